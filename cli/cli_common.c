@@ -1,0 +1,40 @@
+#include "cli_common.h"
+
+#include <time.h>
+
+void sq_json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        switch (*p) {
+        case '"': fputs("\\\"", f); break;
+        case '\\': fputs("\\\\", f); break;
+        case '\n': fputs("\\n", f); break;
+        case '\r': fputs("\\r", f); break;
+        case '\t': fputs("\\t", f); break;
+        default:
+            if (*p < 0x20) fprintf(f, "\\u%04x", *p);
+            else fputc(*p, f);
+        }
+    }
+    fputc('"', f);
+}
+
+double sq_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int sq_exit_code(sq_status st)
+{
+    switch (st) {
+    case SQ_OK: return SQ_EXIT_OK;
+    case SQ_ERR_NOMEM:
+    case SQ_ERR_SOLVER:
+    case SQ_ERR_INTERNAL: return SQ_EXIT_FAILURE;
+    case SQ_ERR_ARGUMENT: return SQ_EXIT_USAGE;
+    default: return SQ_EXIT_INVALID_INPUT;
+    }
+}

@@ -1,0 +1,31 @@
+/* seamquad CLI: shared helpers (printing, JSON, timing). Only the CLI
+ * prints; the library returns codes and messages. */
+#ifndef SQ_CLI_COMMON_H
+#define SQ_CLI_COMMON_H
+
+#include <stdio.h>
+
+#include "sq_error.h"
+
+#define SQ_VERSION_STRING "0.1.0"
+
+/* Exit codes shared by every subcommand. */
+enum {
+    SQ_EXIT_OK = 0,
+    SQ_EXIT_INVALID_INPUT = 1, /* the input cannot be processed (message says why) */
+    SQ_EXIT_USAGE = 2,         /* wrong command line                                */
+    SQ_EXIT_FAILURE = 3        /* internal or I/O failure                           */
+};
+
+int sq_cmd_check(int argc, char **argv);
+
+/* Writes s as a JSON string literal (with quotes) to f. */
+void sq_json_string(FILE *f, const char *s);
+
+/* Monotonic time in seconds. */
+double sq_now(void);
+
+/* Exit code for a library status. */
+int sq_exit_code(sq_status st);
+
+#endif

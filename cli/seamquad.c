@@ -1,0 +1,77 @@
+/* seamquad command-line tool: one subcommand per pipeline stage. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli_common.h"
+
+typedef struct subcommand {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+} subcommand;
+
+static const subcommand commands[] = {
+    {"check", sq_cmd_check, "validate a mesh and its cones: can seamquad process them?"},
+    {"cones", NULL, "compute cones from a smooth cross field (planned)"},
+    {"domain", NULL, "build the combinatorial seamless domain for a cone set (planned)"},
+    {"param", NULL, "seamless, locally injective parametrization of a mesh (planned)"},
+    {"quantize", NULL, "optimize distortion, then quantize to an integer grid (planned)"},
+    {"extract", NULL, "extract the closed pure-quad mesh of a parametrization (planned)"},
+    {"smooth", NULL, "smooth a quad mesh on the input surface with Ceres (planned)"},
+    {"subdiv", NULL, "Catmull-Clark limit surface; STEP and IGES B-spline export (planned)"},
+    {"remesh", NULL, "the whole pipeline: triangle mesh in, quad mesh out (planned)"},
+};
+#define NCOMMANDS (sizeof commands / sizeof commands[0])
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "seamquad %s: quad meshes with guaranteed validity from closed triangle meshes\n"
+            "\n"
+            "usage: seamquad COMMAND [ARGS]   (seamquad COMMAND --help for details)\n"
+            "\n"
+            "commands:\n",
+            SQ_VERSION_STRING);
+    for (size_t i = 0; i < NCOMMANDS; i++)
+        fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f,
+            "\n"
+            "The pipeline: a closed manifold triangle mesh and its cones (prescribed\n"
+            "irregular vertices) become a seamless parametrization whose domain is built\n"
+            "combinatorially (Zhou, Tu, Zorin, Campen, EG 2020), then an integer grid\n"
+            "map, a closed pure-quad mesh whose irregular vertices are exactly the cones,\n"
+            "and a Catmull-Clark surface exported as B-spline patches for CAD.\n"
+            "\n"
+            "Start with:  seamquad check MESH --cones CONES\n"
+            "\n"
+            "exit codes: 0 success, 1 the input cannot be processed (the message says\n"
+            "why and where), 2 wrong command line, 3 internal or I/O failure.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return SQ_EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        usage(stdout);
+        return SQ_EXIT_OK;
+    }
+    if (!strcmp(cmd, "--version") || !strcmp(cmd, "-V")) {
+        printf("seamquad %s\n", SQ_VERSION_STRING);
+        return SQ_EXIT_OK;
+    }
+    for (size_t i = 0; i < NCOMMANDS; i++) {
+        if (strcmp(cmd, commands[i].name)) continue;
+        if (!commands[i].run) {
+            fprintf(stderr, "seamquad: '%s' is planned but not built yet: %s\n", cmd,
+                    commands[i].summary);
+            return SQ_EXIT_USAGE;
+        }
+        return commands[i].run(argc - 1, argv + 1);
+    }
+    fprintf(stderr, "seamquad: unknown command '%s' (see seamquad --help)\n", cmd);
+    return SQ_EXIT_USAGE;
+}

@@ -1,0 +1,61 @@
+/* seamquad: halfedge mesh as flat index arrays.
+ *
+ * Halfedge h runs from vertex he_vert[h] to vertex he_vert[he_next[h]] and
+ * lies in face he_face[h]; he_twin[h] is the opposite halfedge (always valid:
+ * meshes here are closed). For a mesh built from a soup, the halfedges of
+ * face f are face_off[f] .. face_off[f+1]-1 in the soup's corner order, so
+ * halfedge c starts at corner c. */
+#ifndef SQ_MESH_H
+#define SQ_MESH_H
+
+#include <stdint.h>
+
+#include "sq_error.h"
+#include "sq_soup.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sq_mesh {
+    uint32_t nv, nf, nh;
+    double *pos;          /* 3*nv                                   */
+    uint32_t *he_next;    /* nh                                     */
+    uint32_t *he_twin;    /* nh                                     */
+    uint32_t *he_vert;    /* nh: origin vertex                      */
+    uint32_t *he_face;    /* nh                                     */
+    uint32_t *v_he;       /* nv: one outgoing halfedge              */
+    uint32_t *f_he;       /* nf: first halfedge of the face         */
+} sq_mesh;
+
+enum {
+    /* accept faces of any valence >= 3 (quad meshes); default: triangles */
+    SQ_MESH_ALLOW_POLYGONS = 1u << 0,
+    /* skip the exact collinearity test of triangles */
+    SQ_MESH_SKIP_DEGENERATE = 1u << 1
+};
+
+/* Validates the soup and builds the halfedge mesh. Checks, in this order:
+ * non-empty; finite coordinates; face valence; indices in range; no
+ * repeated vertex in a face; every vertex used; edge-manifold; consistent
+ * orientation; closed; vertex-manifold; one connected component; no
+ * triangle with exactly collinear corners (exact predicate). The first
+ * violation is returned with a message naming the element and its file and
+ * line; the message also counts further violations of the same kind. */
+sq_status sq_mesh_from_soup(const sq_soup *soup, unsigned flags, sq_mesh *out, sq_error *err);
+
+void sq_mesh_free(sq_mesh *m);
+
+/* Euler characteristic V - E + F (E = nh/2). */
+int64_t sq_mesh_euler(const sq_mesh *m);
+
+/* Genus of a closed orientable connected mesh: (2 - chi)/2. */
+int64_t sq_mesh_genus(const sq_mesh *m);
+
+/* Number of faces around vertex v (its valence). */
+uint32_t sq_mesh_vertex_valence(const sq_mesh *m, uint32_t v);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,37 @@
+/* seamquad: sparse linear solves (CHOLMOD for symmetric positive definite,
+ * UMFPACK for general square systems). Matrices come in as triplets
+ * (row, col, value) with duplicates summed, 0-based. No global state: every
+ * factorization owns its solver context. */
+#ifndef SQ_SPARSE_H
+#define SQ_SPARSE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sq_error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sq_spd sq_spd;   /* Cholesky factorization (CHOLMOD)   */
+typedef struct sq_lu sq_lu;     /* LU factorization (UMFPACK)         */
+
+/* Symmetric positive definite matrix of size n. Give either triangle or
+ * both: entries with row < col are ignored (the lower triangle is used). */
+sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                        const double *vals, sq_spd **out, sq_error *err);
+/* Solves A X = B for nrhs columns stored one after another (n each). */
+sq_status sq_spd_solve(sq_spd *f, uint32_t nrhs, const double *b, double *x, sq_error *err);
+void sq_spd_free(sq_spd *f);
+
+/* General square matrix of size n. */
+sq_status sq_lu_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                       const double *vals, sq_lu **out, sq_error *err);
+sq_status sq_lu_solve(sq_lu *f, uint32_t nrhs, const double *b, double *x, sq_error *err);
+void sq_lu_free(sq_lu *f);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
