@@ -107,8 +107,8 @@ static void print_text(const check_report *r)
     if (r->err.code == SQ_OK)
         printf("result        OK: seamquad can process this input\n");
     else
-        printf("result        cannot be processed (%s): %s\n", sq_status_name(r->err.code),
-               r->err.msg);
+        printf("result        cannot be processed (%s): see the error below\n",
+               sq_status_name(r->err.code));
 }
 
 static void print_json(const check_report *r)
@@ -186,11 +186,18 @@ static void run_check(check_report *r)
     r->defect_sum = 0;
     for (uint32_t v = 0; v < mesh.nv; v++) r->defect_sum += 4 - (int64_t)valence[v];
     r->err_stage = "gauss-bonnet";
-    if (sq_cones_check_gauss_bonnet(mesh.nv, valence, r->euler, &r->err)) goto done;
+    if (sq_cones_check_gauss_bonnet(mesh.nv, valence, r->euler, &r->err)) goto cone_error;
     r->gauss_bonnet = 1;
     r->err_stage = "realizability";
-    if (sq_cones_check_realizable(mesh.nv, valence, r->genus, &r->err)) goto done;
+    if (sq_cones_check_realizable(mesh.nv, valence, r->genus, &r->err)) goto cone_error;
     r->realizable = 1;
+    goto done;
+cone_error: {
+        /* name the cone file: the library message only knows vertices */
+        char msg[SQ_ERROR_MSG_MAX];
+        snprintf(msg, sizeof msg, "%s", r->err.msg);
+        sq_error_set(&r->err, r->err.code, "%s: %s", r->cones_path, msg);
+    }
 done:
     free(valence);
     sq_mesh_free(&mesh);

@@ -79,6 +79,17 @@ static const char *more(uint32_t n, char *buf, size_t size, const char *what)
     return buf;
 }
 
+/* "face F (line L)" / "face F (record R)" / "face F" for use after a file
+ * prefix. */
+static const char *face_ref(const sq_soup *s, uint32_t f, char *buf, size_t n)
+{
+    if (s->face_line)
+        snprintf(buf, n, "%u (%s %u)", f, s->line_kind == 1 ? "record" : "line", s->face_line[f]);
+    else
+        snprintf(buf, n, "%u", f);
+    return buf;
+}
+
 static const char *file_prefix(const sq_soup *s, char *buf)
 {
     if (s->path) snprintf(buf, WHERE_MAX, "%s: ", s->path);
@@ -244,8 +255,8 @@ typedef struct edge_problems {
 
 static sq_status match_twins(const sq_soup *s, sq_mesh *m, sq_error *err)
 {
-    edge_key *keys;
-    uint32_t *start;
+    edge_key *keys = NULL;
+    uint32_t *start = NULL;
     sq_status st = bucket_edges(m, &keys, &start, err);
     if (st) return st;
 
@@ -282,29 +293,23 @@ static sq_status match_twins(const sq_soup *s, sq_mesh *m, sq_error *err)
     char pre[WHERE_MAX], fa[WHERE_MAX], fb[WHERE_MAX], m1[64];
     if (nonman.count) {
         const edge_key *k = keys + nonman.first_at;
-        char faces[WHERE_MAX * 2];
+        char faces[WHERE_MAX];
         size_t len = 0;
         faces[0] = '\0';
         for (uint32_t t = 0; t < nonman.first_n && t < 4 && len < sizeof faces; t++) {
-            uint32_t f = m->he_face[k[t].h];
-            char w[WHERE_MAX - 4];
-            sq_soup_where_face(s, f, w, sizeof w);
-            len += (size_t)snprintf(faces + len, sizeof faces - len, "%s%u%s%s%s",
-                                    t ? ", " : "", f, w[0] ? " (" : "", w, w[0] ? ")" : "");
+            char fr[64];
+            len += (size_t)snprintf(faces + len, sizeof faces - len, "%s%s", t ? ", " : "",
+                                    face_ref(s, m->he_face[k[t].h], fr, sizeof fr));
         }
         st = sq_error_set(err, SQ_ERR_NONMANIFOLD_EDGE,
-                          "%snon-manifold edge (%u, %u): shared by %u faces: %s%s%s",
+                          "%snon-manifold edge (%u, %u): shared by %u faces (faces %s%s)%s",
                           file_prefix(s, pre), nonman.first_lo, k->hi, nonman.first_n, faces,
                           nonman.first_n > 4 ? ", ..." : "",
                           more(nonman.count - 1, m1, sizeof m1, "non-manifold edges"));
     } else if (flip.count) {
         const edge_key *k = keys + flip.first_at;
-        uint32_t f0 = m->he_face[k[0].h], f1 = m->he_face[k[1].h];
-        char w0[WHERE_MAX - 4], w1[WHERE_MAX - 4];
-        sq_soup_where_face(s, f0, w0, sizeof w0);
-        sq_soup_where_face(s, f1, w1, sizeof w1);
-        snprintf(fa, sizeof fa, "%u%s%s%s", f0, w0[0] ? " (" : "", w0, w0[0] ? ")" : "");
-        snprintf(fb, sizeof fb, "%u%s%s%s", f1, w1[0] ? " (" : "", w1, w1[0] ? ")" : "");
+        face_ref(s, m->he_face[k[0].h], fa, sizeof fa);
+        face_ref(s, m->he_face[k[1].h], fb, sizeof fb);
         st = sq_error_set(err, SQ_ERR_ORIENTATION,
                           "%sinconsistent orientation: faces %s and %s both traverse edge "
                           "%u -> %u in the same direction (a flipped face?)%s",

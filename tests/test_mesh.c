@@ -286,7 +286,7 @@ static void test_provenance(void **state)
     s.vert_line = vl;
     s.face_line = fl;
     s.path = path;
-    expect_error(&s, 0, SQ_ERR_ORIENTATION, "mesh.obj:10");
+    expect_error(&s, 0, SQ_ERR_ORIENTATION, "mesh.obj: inconsistent orientation: faces 0 (line 7) and 3 (line 10)");
     s.nf = 3;
     expect_error(&s, 0, SQ_ERR_BOUNDARY, "mesh.obj:");
 }
