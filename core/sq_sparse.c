@@ -1,0 +1,460 @@
+/* seamquad: sparse direct solves (see docs/solvers.md).
+ *
+ * Symmetric positive definite systems go to CHOLMOD, general square systems
+ * to UMFPACK, both from SuiteSparse, through their plain-C `int` interfaces
+ * (our sizes are uint32 and a mesh never needs 2^31 nonzeros; larger input
+ * is refused with SQ_ERR_ARGUMENT). Every factorization owns its solver
+ * state (a cholmod_common, or an UMFPACK Control array), so different
+ * factorizations may be used from different threads; one factorization must
+ * not be used by two threads at once (CHOLMOD keeps workspace in its common).
+ *
+ * Licences (Debian's SuiteSparse 5.12 build): UMFPACK is GPL. CHOLMOD's Core
+ * and Cholesky modules are LGPL, its Supernodal module is GPL; it is part of
+ * the same libcholmod.so, and we leave CHOLMOD's automatic choice between
+ * simplicial and supernodal factorization on (CHOLMOD_AUTO: supernodal when
+ * flops / nnz(L) >= 40, which holds for mesh Laplacians of a few thousand
+ * vertices and more). So in practice we use the supernodal (GPL) code for
+ * large meshes and the simplicial (LGPL) code for small ones.
+ *
+ * Singular matrices are reported, not solved. Besides the exact failures the
+ * libraries report (a pivot that is not positive for Cholesky, a zero pivot
+ * for LU), a pivot at roundoff level is rejected too, because a singular
+ * matrix such as a graph Laplacian without a pinned vertex usually leaves
+ * such a pivot instead of an exact zero, and the "solution" is then noise:
+ *  - Cholesky: the computed pivot d_k = a_kk - sum_j l_kj^2 d_j is the exact
+ *    pivot of a matrix whose diagonal entry a_kk moved by at most about
+ *    (n+1) u a_kk (the terms of the sum are non-negative and add up to at
+ *    most a_kk; u = 2^-53). A pivot d_k <= (n+1) eps a_kk (eps = 2u) is
+ *    therefore indistinguishable from zero: "numerically singular".
+ *  - LU: UMFPACK scales rows to unit 1-norm and reports
+ *    rcond = min |u_kk| / max |u_kk|. Below n eps we call the matrix
+ *    numerically singular (a heuristic: LU has no bound as clean as
+ *    Cholesky's). Badly scaled but regular rows are not affected, because
+ *    the ratio is taken after row scaling. */
+#include "sq_sparse.h"
+
+#include <assert.h>
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cholmod.h>
+#include <umfpack.h>
+
+struct sq_spd {
+    cholmod_common common; /* owned: CHOLMOD's options, workspace, status */
+    cholmod_factor *factor;
+    uint32_t n;
+};
+
+struct sq_lu {
+    int n;
+    int *col_start;  /* compressed-column form of A, kept for refinement */
+    int *row_index;
+    double *value;
+    void *numeric;   /* UMFPACK numeric factorization */
+    double *scratch; /* one solution column, so that x may equal b */
+    double control[UMFPACK_CONTROL];
+};
+
+/* ---- argument checks shared by both factorizations ---------------------- */
+
+static sq_status check_triplets(const char *who, uint32_t n, size_t nnz, const uint32_t *rows,
+                                const uint32_t *cols, const double *vals, void *out,
+                                sq_error *err)
+{
+    if (!out) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: output pointer is NULL", who);
+    if (n == 0) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: matrix size n is 0", who);
+    if (n > (uint32_t)INT_MAX - 1)
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "%s: matrix size %u exceeds the solver's int range", who, n);
+    if (nnz > (size_t)INT_MAX)
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "%s: %zu nonzeros exceed the solver's int range", who, nnz);
+    if (nnz > 0 && (!rows || !cols || !vals))
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: NULL triplet array with %zu nonzeros",
+                            who, nnz);
+    for (size_t k = 0; k < nnz; k++) {
+        if (rows[k] >= n || cols[k] >= n)
+            return sq_error_set(err, SQ_ERR_ARGUMENT,
+                                "%s: triplet %zu has index (%u, %u) outside the %u x %u matrix",
+                                who, k, rows[k], cols[k], n, n);
+        if (!isfinite(vals[k]))
+            return sq_error_set(err, SQ_ERR_ARGUMENT,
+                                "%s: triplet %zu at (%u, %u) has a non-finite value", who, k,
+                                rows[k], cols[k]);
+    }
+    return SQ_OK;
+}
+
+static sq_status check_solve(const char *who, const void *f, uint32_t nrhs, const double *b,
+                             const double *x, sq_error *err)
+{
+    if (!f) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: factorization is NULL", who);
+    if (nrhs > 0 && (!b || !x))
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: NULL right-hand side or solution", who);
+    return SQ_OK;
+}
+
+static sq_status check_solution(const char *who, const double *x, size_t count, sq_error *err)
+{
+    for (size_t i = 0; i < count; i++)
+        if (!isfinite(x[i]))
+            return sq_error_set(err, SQ_ERR_SOLVER,
+                                "%s: solution entry %zu is not finite (matrix numerically "
+                                "singular, or right-hand side not finite)",
+                                who, i);
+    return SQ_OK;
+}
+
+/* ---- CHOLMOD ------------------------------------------------------------- */
+
+static const char *cholmod_status_text(int status)
+{
+    switch (status) {
+    case CHOLMOD_OK: return "ok";
+    case CHOLMOD_NOT_INSTALLED: return "method not installed";
+    case CHOLMOD_OUT_OF_MEMORY: return "out of memory";
+    case CHOLMOD_TOO_LARGE: return "problem too large";
+    case CHOLMOD_INVALID: return "invalid input";
+    case CHOLMOD_GPU_PROBLEM: return "GPU problem";
+    case CHOLMOD_NOT_POSDEF: return "matrix not positive definite";
+    case CHOLMOD_DSMALL: return "diagonal entry of the factor too small";
+    default: return "unknown status";
+    }
+}
+
+/* Turns a CHOLMOD failure (a NULL/FALSE result or a non-OK status) into our
+ * error. Returns SQ_OK if the call succeeded. */
+static sq_status cholmod_check(const char *who, const char *step, int ok,
+                               const cholmod_common *c, sq_error *err)
+{
+    if (ok && c->status == CHOLMOD_OK) return SQ_OK;
+    const sq_status code = c->status == CHOLMOD_OUT_OF_MEMORY ? SQ_ERR_NOMEM : SQ_ERR_SOLVER;
+    return sq_error_set(err, code, "%s: CHOLMOD %s failed: %s (status %d)", who, step,
+                        cholmod_status_text(c->status), c->status);
+}
+
+static void set_cholmod_options(cholmod_common *c)
+{
+    c->print = 0;                          /* the library never prints */
+    c->try_catch = 0;
+    c->error_handler = NULL;
+    c->supernodal = CHOLMOD_AUTO;          /* see the licence note at the top */
+    c->supernodal_switch = 40;
+    /* LL', not LDL': a simplicial LDL' factorization happily factors an
+     * indefinite matrix (negative D), while LL' stops at the first pivot
+     * that is not positive. The supernodal factorization is always LL'. */
+    c->final_ll = 1;
+    c->final_asis = 1;                     /* keep the factor as computed */
+    c->nmethods = 0;                       /* AMD, then METIS if AMD's fill is poor */
+    c->postorder = 1;
+    c->quick_return_if_not_posdef = 1;
+    c->dbound = 0;                         /* no pivot modification, ever */
+    c->itype = CHOLMOD_INT;
+    c->dtype = CHOLMOD_DOUBLE;
+}
+
+/* Checks every Cholesky pivot d_k = L_kk^2 against the diagonal entry of A it
+ * came from (see the note on singular matrices at the top). `diag` holds the
+ * diagonal of A in the original order. */
+static sq_status check_pivots(const char *who, const cholmod_factor *l, const double *diag,
+                              sq_error *err)
+{
+    assert(l->is_ll && l->xtype == CHOLMOD_REAL);
+    const size_t n = l->n;
+    const int *perm = l->Perm;
+    const double *lx = l->x;
+    const double tolerance = (double)(n + 1) * DBL_EPSILON;
+    size_t worst = 0;
+    double worst_ratio = INFINITY;
+    if (l->is_super) {
+        /* Supernode s holds columns super[s] .. super[s+1]-1 as a dense
+         * column-major block of pi[s+1]-pi[s] rows starting at lx[px[s]]. */
+        const int *super = l->super, *pi = l->pi, *px = l->px;
+        for (size_t s = 0; s < l->nsuper; s++) {
+            const size_t rows = (size_t)(pi[s + 1] - pi[s]);
+            for (int k = super[s]; k < super[s + 1]; k++) {
+                const size_t j = (size_t)(k - super[s]);
+                const double lkk = lx[(size_t)px[s] + j * rows + j];
+                const double a = diag[perm ? perm[k] : k];
+                const double ratio = lkk * lkk / a;
+                if (!(ratio >= worst_ratio)) { /* NaN counts as worst */
+                    worst_ratio = ratio;
+                    worst = (size_t)k;
+                }
+            }
+        }
+    } else {
+        /* Simplicial: the diagonal is the first entry of each column. */
+        const int *p = l->p;
+        for (size_t k = 0; k < n; k++) {
+            const double lkk = lx[p[k]];
+            const double a = diag[perm ? perm[k] : (int)k];
+            const double ratio = lkk * lkk / a;
+            if (!(ratio >= worst_ratio)) {
+                worst_ratio = ratio;
+                worst = k;
+            }
+        }
+    }
+    if (!(worst_ratio > tolerance)) {
+        const long row = perm ? (long)perm[worst] : (long)worst;
+        return sq_error_set(err, SQ_ERR_SOLVER,
+                            "%s: matrix is numerically singular (Cholesky pivot %zu of %zu, "
+                            "at row/column %ld, is %.3g times its diagonal entry: below the "
+                            "roundoff level %.3g)",
+                            who, worst + 1, n, row, worst_ratio, tolerance);
+    }
+    return SQ_OK;
+}
+
+sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                        const double *vals, sq_spd **out, sq_error *err)
+{
+    static const char who[] = "sq_spd_factor";
+    sq_status st = check_triplets(who, n, nnz, rows, cols, vals, out, err);
+    if (st != SQ_OK) return st;
+    *out = NULL;
+
+    sq_spd *f = calloc(1, sizeof *f);
+    if (!f) return sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
+    f->n = n;
+    if (!cholmod_start(&f->common)) {
+        free(f);
+        return sq_error_set(err, SQ_ERR_SOLVER, "%s: cholmod_start failed", who);
+    }
+    set_cholmod_options(&f->common);
+    cholmod_common *c = &f->common;
+
+    /* Keep the lower triangle only: CHOLMOD would otherwise transpose the
+     * upper entries and add them in. */
+    size_t lower = 0;
+    for (size_t k = 0; k < nnz; k++) lower += rows[k] >= cols[k];
+
+    cholmod_sparse *a = NULL;
+    double *diag = calloc(n, sizeof *diag); /* diagonal of A, duplicates summed */
+    cholmod_triplet *t = cholmod_allocate_triplet(n, n, lower, -1, CHOLMOD_REAL, c);
+    st = diag ? cholmod_check(who, "allocate_triplet", t != NULL, c, err)
+              : sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
+    if (st == SQ_OK) {
+        int *ti = t->i, *tj = t->j;
+        double *tx = t->x;
+        size_t m = 0;
+        for (size_t k = 0; k < nnz; k++) {
+            if (rows[k] < cols[k]) continue;
+            ti[m] = (int)rows[k];
+            tj[m] = (int)cols[k];
+            tx[m] = vals[k];
+            m++;
+            if (rows[k] == cols[k]) diag[rows[k]] += vals[k];
+        }
+        assert(m == lower);
+        t->nnz = m;
+        a = cholmod_triplet_to_sparse(t, m, c); /* sums duplicates */
+        st = cholmod_check(who, "triplet_to_sparse", a != NULL, c, err);
+    }
+    cholmod_free_triplet(&t, c);
+
+    if (st == SQ_OK) {
+        f->factor = cholmod_analyze(a, c);
+        st = cholmod_check(who, "analyze", f->factor != NULL, c, err);
+    }
+    if (st == SQ_OK) {
+        const int ok = cholmod_factorize(a, f->factor, c);
+        if (ok && c->status == CHOLMOD_NOT_POSDEF) {
+            /* minor is the failing column in the permuted order. */
+            const cholmod_factor *l = f->factor;
+            const size_t minor = l->minor;
+            const int *perm = l->Perm;
+            const long row = (perm && minor < n) ? (long)perm[minor] : (long)minor;
+            st = sq_error_set(err, SQ_ERR_SOLVER,
+                              "%s: matrix is not positive definite (Cholesky pivot %zu of "
+                              "%u is not positive, at row/column %ld)",
+                              who, minor + 1, n, row);
+        } else {
+            st = cholmod_check(who, "factorize", ok, c, err);
+        }
+    }
+    if (st == SQ_OK) st = check_pivots(who, f->factor, diag, err);
+    cholmod_free_sparse(&a, c);
+    free(diag);
+
+    if (st != SQ_OK) {
+        sq_spd_free(f);
+        return st;
+    }
+    *out = f;
+    return SQ_OK;
+}
+
+sq_status sq_spd_solve(sq_spd *f, uint32_t nrhs, const double *b, double *x, sq_error *err)
+{
+    static const char who[] = "sq_spd_solve";
+    sq_status st = check_solve(who, f, nrhs, b, x, err);
+    if (st != SQ_OK || nrhs == 0) return st;
+    cholmod_common *c = &f->common;
+    const size_t count = (size_t)f->n * nrhs;
+
+    cholmod_dense *bd = cholmod_allocate_dense(f->n, nrhs, f->n, CHOLMOD_REAL, c);
+    st = cholmod_check(who, "allocate_dense", bd != NULL, c, err);
+    if (st != SQ_OK) return st;
+    memcpy(bd->x, b, count * sizeof *b);
+
+    cholmod_dense *xd = cholmod_solve(CHOLMOD_A, f->factor, bd, c);
+    st = cholmod_check(who, "solve", xd != NULL, c, err);
+    if (st == SQ_OK) {
+        assert(xd->nrow == f->n && xd->ncol == nrhs && xd->d == f->n);
+        memcpy(x, xd->x, count * sizeof *x);
+        st = check_solution(who, x, count, err);
+    }
+    cholmod_free_dense(&xd, c);
+    cholmod_free_dense(&bd, c);
+    return st;
+}
+
+void sq_spd_free(sq_spd *f)
+{
+    if (!f) return;
+    cholmod_free_factor(&f->factor, &f->common);
+    cholmod_finish(&f->common);
+    free(f);
+}
+
+/* ---- UMFPACK ------------------------------------------------------------- */
+
+static const char *umfpack_status_text(int status)
+{
+    switch (status) {
+    case UMFPACK_OK: return "ok";
+    case UMFPACK_WARNING_singular_matrix: return "matrix is singular";
+    case UMFPACK_ERROR_out_of_memory: return "out of memory";
+    case UMFPACK_ERROR_invalid_Numeric_object: return "invalid numeric object";
+    case UMFPACK_ERROR_invalid_Symbolic_object: return "invalid symbolic object";
+    case UMFPACK_ERROR_argument_missing: return "argument missing";
+    case UMFPACK_ERROR_n_nonpositive: return "n is not positive";
+    case UMFPACK_ERROR_invalid_matrix: return "invalid matrix";
+    case UMFPACK_ERROR_invalid_system: return "invalid system";
+    case UMFPACK_ERROR_ordering_failed: return "ordering failed";
+    case UMFPACK_ERROR_internal_error: return "internal error";
+    default: return "unknown status";
+    }
+}
+
+static sq_status umfpack_check(const char *who, const char *step, int status, sq_error *err)
+{
+    if (status == UMFPACK_OK) return SQ_OK;
+    const sq_status code = status == UMFPACK_ERROR_out_of_memory ? SQ_ERR_NOMEM : SQ_ERR_SOLVER;
+    return sq_error_set(err, code, "%s: UMFPACK %s failed: %s (status %d)", who, step,
+                        umfpack_status_text(status), status);
+}
+
+sq_status sq_lu_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                       const double *vals, sq_lu **out, sq_error *err)
+{
+    static const char who[] = "sq_lu_factor";
+    sq_status st = check_triplets(who, n, nnz, rows, cols, vals, out, err);
+    if (st != SQ_OK) return st;
+    *out = NULL;
+
+    sq_lu *f = calloc(1, sizeof *f);
+    if (!f) return sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
+    f->n = (int)n;
+    umfpack_di_defaults(f->control);
+    f->control[UMFPACK_PRL] = 0;                        /* never print */
+    f->control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_AUTO;
+    f->control[UMFPACK_IRSTEP] = 2;                     /* iterative refinement steps */
+    f->control[UMFPACK_SCALE] = UMFPACK_SCALE_SUM;      /* rows to unit 1-norm */
+
+    const size_t cap = nnz > 0 ? nnz : 1;
+    int *ti = malloc(cap * sizeof *ti);
+    int *tj = malloc(cap * sizeof *tj);
+    f->col_start = malloc(((size_t)n + 1) * sizeof *f->col_start);
+    f->row_index = malloc(cap * sizeof *f->row_index);
+    f->value = malloc(cap * sizeof *f->value);
+    f->scratch = malloc((size_t)n * sizeof *f->scratch);
+    if (!ti || !tj || !f->col_start || !f->row_index || !f->value || !f->scratch) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
+    } else {
+        for (size_t k = 0; k < nnz; k++) {
+            ti[k] = (int)rows[k];
+            tj[k] = (int)cols[k];
+        }
+        /* Compressed columns, duplicates summed (Map = NULL). */
+        st = umfpack_check(who, "triplet_to_col",
+                           umfpack_di_triplet_to_col(f->n, f->n, (int)nnz, ti, tj, vals,
+                                                     f->col_start, f->row_index, f->value,
+                                                     NULL),
+                           err);
+    }
+    free(ti);
+    free(tj);
+
+    void *symbolic = NULL;
+    double info[UMFPACK_INFO];
+    if (st == SQ_OK) {
+        const int status = umfpack_di_symbolic(f->n, f->n, f->col_start, f->row_index,
+                                               f->value, &symbolic, f->control, info);
+        st = umfpack_check(who, "symbolic analysis", status, err);
+    }
+    if (st == SQ_OK) {
+        const int status = umfpack_di_numeric(f->col_start, f->row_index, f->value, symbolic,
+                                              &f->numeric, f->control, info);
+        if (status == UMFPACK_WARNING_singular_matrix)
+            st = sq_error_set(err, SQ_ERR_SOLVER,
+                              "%s: matrix is singular (LU factorization of the %u x %u "
+                              "matrix found a zero pivot)",
+                              who, n, n);
+        else
+            st = umfpack_check(who, "numeric factorization", status, err);
+    }
+    if (st == SQ_OK) {
+        const double rcond = info[UMFPACK_RCOND];
+        const double tolerance = (double)n * DBL_EPSILON;
+        if (!(rcond >= tolerance))
+            st = sq_error_set(err, SQ_ERR_SOLVER,
+                              "%s: matrix is numerically singular (LU pivot ratio "
+                              "min|u_kk|/max|u_kk| = %.3g after row scaling, below the "
+                              "roundoff level %.3g)",
+                              who, rcond, tolerance);
+    }
+    umfpack_di_free_symbolic(&symbolic);
+
+    if (st != SQ_OK) {
+        sq_lu_free(f);
+        return st;
+    }
+    *out = f;
+    return SQ_OK;
+}
+
+sq_status sq_lu_solve(sq_lu *f, uint32_t nrhs, const double *b, double *x, sq_error *err)
+{
+    static const char who[] = "sq_lu_solve";
+    sq_status st = check_solve(who, f, nrhs, b, x, err);
+    if (st != SQ_OK) return st;
+    const size_t n = (size_t)f->n;
+    double info[UMFPACK_INFO];
+    for (uint32_t k = 0; k < nrhs; k++) {
+        /* Solve into scratch, then copy: x may be the same array as b. */
+        const int status = umfpack_di_solve(UMFPACK_A, f->col_start, f->row_index, f->value,
+                                            f->scratch, b + k * n, f->numeric, f->control, info);
+        st = umfpack_check(who, "solve", status, err);
+        if (st != SQ_OK) return st;
+        memcpy(x + k * n, f->scratch, n * sizeof *x);
+    }
+    return check_solution(who, x, n * nrhs, err);
+}
+
+void sq_lu_free(sq_lu *f)
+{
+    if (!f) return;
+    umfpack_di_free_numeric(&f->numeric);
+    free(f->col_start);
+    free(f->row_index);
+    free(f->value);
+    free(f->scratch);
+    free(f);
+}
