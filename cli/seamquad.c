@@ -13,7 +13,7 @@ typedef struct subcommand {
 static const subcommand commands[] = {
     {"check", sq_cmd_check, "validate a mesh and its cones: can seamquad process them?"},
     {"cones", NULL, "compute cones from a smooth cross field (planned)"},
-    {"domain", NULL, "build the combinatorial seamless domain for a cone set (planned)"},
+    {"domain", sq_cmd_domain, "build the combinatorial seamless domain of a cone set"},
     {"param", NULL, "seamless, locally injective parametrization of a mesh (planned)"},
     {"quantize", NULL, "optimize distortion, then quantize to an integer grid (planned)"},
     {"extract", NULL, "extract the closed pure-quad mesh of a parametrization (planned)"},

@@ -1,0 +1,80 @@
+#include "sq_disk_layout.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sq_sparse.h"
+
+sq_status sq_disk_layout_tutte(const sq_metapolygon *P, uint32_t start, double *xy,
+                               sq_error *err)
+{
+    if (P->nf == 0 || P->bnd_he == SQ_NONE)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "cannot lay out an empty disk");
+    if (start == SQ_NONE) start = P->bnd_he;
+    if (P->he_face[start] != SQ_NONE)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "layout start %u is not a boundary halfedge",
+                            start);
+    const uint32_t nv = P->nv;
+    uint32_t *idx = malloc((size_t)nv * sizeof *idx); /* interior index or SQ_NONE */
+    if (!idx) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    for (uint32_t v = 0; v < nv; v++) idx[v] = 0;
+
+    /* boundary: clockwise on the unit circle */
+    uint32_t h = start, t = 0;
+    do {
+        uint32_t v = P->he_vert[h];
+        double a = -6.283185307179586 * (double)t / (double)P->nbnd;
+        xy[2 * v] = cos(a);
+        xy[2 * v + 1] = sin(a);
+        idx[v] = SQ_NONE;
+        t++;
+        h = P->he_next[h];
+    } while (h != start);
+    assert(t == P->nbnd);
+
+    uint32_t ni = 0;
+    for (uint32_t v = 0; v < nv; v++)
+        if (idx[v] != SQ_NONE) idx[v] = ni++;
+    sq_status st = SQ_OK;
+    if (ni == 0) goto done;
+
+    /* uniform Laplacian over the interior: L x = sum of boundary neighbours */
+    size_t cap = (size_t)P->nh + ni, nnz = 0;
+    uint32_t *ri = malloc(cap * sizeof *ri), *ci = malloc(cap * sizeof *ci);
+    double *val = malloc(cap * sizeof *val);
+    double *rhs = calloc(2 * (size_t)ni, sizeof *rhs), *sol = malloc(2 * (size_t)ni * sizeof *sol);
+    if (!ri || !ci || !val || !rhs || !sol) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto free_system;
+    }
+    for (uint32_t e = 0; e < P->nh; e++) {
+        uint32_t a = P->he_vert[e], b = P->he_vert[P->he_next[e]];
+        if (idx[a] == SQ_NONE) continue;
+        /* every halfedge out of an interior vertex is one edge of it */
+        ri[nnz] = idx[a], ci[nnz] = idx[a], val[nnz++] = 1.0;
+        if (idx[b] != SQ_NONE) {
+            ri[nnz] = idx[a], ci[nnz] = idx[b], val[nnz++] = -1.0;
+        } else {
+            rhs[idx[a]] += xy[2 * b];
+            rhs[ni + idx[a]] += xy[2 * b + 1];
+        }
+    }
+    sq_spd *f = NULL;
+    st = sq_spd_factor(ni, nnz, ri, ci, val, &f, err);
+    if (st == SQ_OK) st = sq_spd_solve(f, 2, rhs, sol, err);
+    sq_spd_free(f);
+    if (st == SQ_OK) {
+        for (uint32_t v = 0; v < nv; v++) {
+            if (idx[v] == SQ_NONE) continue;
+            xy[2 * v] = sol[idx[v]];
+            xy[2 * v + 1] = sol[ni + idx[v]];
+        }
+    }
+free_system:
+    free(ri), free(ci), free(val), free(rhs), free(sol);
+done:
+    free(idx);
+    return st;
+}

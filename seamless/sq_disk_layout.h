@@ -1,0 +1,28 @@
+/* seamquad: a planar picture of a combinatorial disk (Tutte embedding).
+ *
+ * Boundary vertices go to the unit circle, spaced evenly in boundary order;
+ * every interior vertex goes to the average of its neighbours (uniform
+ * weights, one sparse SPD solve). This is the layout of seed Fig. 8 (c, d):
+ * it only serves pictures and coordinates of combinatorial outputs, never a
+ * decision of the construction. */
+#ifndef SQ_DISK_LAYOUT_H
+#define SQ_DISK_LAYOUT_H
+
+#include "sq_error.h"
+#include "sq_metapolygon.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* xy: 2*P->nv doubles (caller-owned). start: a boundary halfedge whose
+ * origin goes to angle 0 (SQ_NONE: P->bnd_he). The boundary runs clockwise
+ * around the disk (sq_metapolygon convention), so it is laid out clockwise
+ * and faces come out counterclockwise. */
+sq_status sq_disk_layout_tutte(const sq_metapolygon *P, uint32_t start, double *xy,
+                               sq_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,497 @@
+/* seamquad: the combinatorial seamless domain (see sq_domain.h). */
+#include "sq_domain.h"
+
+#include <assert.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sq_cones.h"
+#include "sq_mesh.h"
+#include "sq_metapolygon_subdivide.h"
+#include "sq_padding.h"
+#include "sq_valence_order.h"
+
+void sq_domain_init(sq_domain *D)
+{
+    memset(D, 0, sizeof *D);
+    sq_metapolygon_init(&D->meta);
+    sq_metapolygon_init(&D->quads);
+    sq_pattern_init(&D->pattern);
+    D->refine = 1;
+}
+
+void sq_domain_free(sq_domain *D)
+{
+    if (!D) return;
+    free(D->order);
+    sq_metapolygon_free(&D->meta);
+    sq_metapolygon_free(&D->quads);
+    free(D->f_meta_face);
+    sq_pattern_free(&D->pattern);
+    free(D->corner_vert);
+    free(D->side_len);
+    free(D->padding);
+    sq_domain_init(D);
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The boundary vertex `steps` edges after boundary vertex v, following the
+ * boundary loop (clockwise, sq_metapolygon convention). */
+static uint32_t walk_boundary(const sq_metapolygon *Q, uint32_t v, uint64_t steps)
+{
+    uint32_t h = Q->v_he[v];
+    assert(Q->he_face[h] == SQ_NONE);
+    for (uint64_t t = 0; t < steps; t++) h = Q->he_next[h];
+    return Q->he_vert[h];
+}
+
+void sq_domain_side_vertices(const sq_domain *D, uint32_t side, uint32_t *verts)
+{
+    const sq_metapolygon *Q = &D->quads;
+    uint32_t h = Q->v_he[D->corner_vert[side]];
+    for (uint32_t t = 0; t <= D->side_len[side]; t++) {
+        verts[t] = Q->he_vert[h];
+        h = Q->he_next[h];
+    }
+}
+
+/* One feasible side correspondence (seed 6.3): offset, padding, cost. */
+typedef struct offset_choice {
+    uint32_t offset;
+    uint64_t d, added;
+    long double total; /* quads after refinement and padding */
+    int64_t *w;        /* k */
+} offset_choice;
+
+static int cmp_choice(const void *x, const void *y)
+{
+    const offset_choice *a = x, *b = y;
+    if (a->total != b->total) return a->total < b->total ? -1 : 1;
+    return (a->offset > b->offset) - (a->offset < b->offset);
+}
+
+/* Seed 6.3 / 9.3: every cyclic offset between the pattern's sides and the
+ * metapolygon's (or only `fixed`) with a padding solution, sorted by the
+ * number of quads after padding. Returns the count (0: none feasible; err
+ * then holds the last solver message); *out is malloc'ed, free each w. */
+static uint32_t feasible_offsets(const sq_pattern *pat, const uint32_t *meta_len, uint32_t fixed,
+                                 uint64_t quads0, offset_choice **out, sq_error *err)
+{
+    const uint32_t k = pat->k;
+    offset_choice *c = calloc(k, sizeof *c);
+    int64_t *L = malloc((size_t)k * sizeof *L);
+    uint32_t n = 0;
+    if (!c || !L) {
+        free(c), free(L);
+        sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        *out = NULL;
+        return 0;
+    }
+    for (uint32_t o = 0; o < k; o++) {
+        if (fixed != SQ_NONE && o != fixed) continue;
+        for (uint32_t i = 0; i < k; i++) L[i] = meta_len[(i + o) % k];
+        int64_t *w = malloc((size_t)k * sizeof *w);
+        if (!w) break;
+        sq_pad_result res;
+        memset(&res, 0, sizeof res);
+        res.w = w;
+        sq_error e2;
+        if (sq_pad_solve_pattern(pat, L, NULL, &res, &e2) != SQ_OK) {
+            if (err) *err = e2;
+            free(w);
+            continue;
+        }
+        c[n].offset = o;
+        c[n].d = res.d;
+        c[n].added = res.added_quads;
+        c[n].total = (long double)res.d * (long double)res.d * (long double)quads0 +
+                     (long double)res.added_quads;
+        c[n].w = w;
+        n++;
+    }
+    free(L);
+    qsort(c, n, sizeof *c, cmp_choice);
+    *out = c;
+    return n;
+}
+
+/* Seed 6.1: glue w[s] layers of quads on every side; keeps corner_v and len
+ * (metapolygon numbering) up to date. */
+static sq_status apply_padding(sq_metapolygon *Q, uint32_t k, uint32_t offset, const int64_t *w,
+                               uint32_t *corner_v, uint32_t *len, sq_error *err)
+{
+    for (uint32_t s = 0; s < k; s++) {
+        if (w[s] == 0) continue;
+        const uint32_t m = (s + offset) % k, prev = (m + k - 1) % k, next = (m + 1) % k;
+        if (w[s] < 0 || w[s] > UINT32_MAX / 2)
+            return sq_error_set(err, SQ_ERR_INTERNAL, "padding %lld out of range",
+                                (long long)w[s]);
+        uint32_t h = Q->v_he[corner_v[m]];
+        assert(Q->he_face[h] == SQ_NONE);
+        sq_status st = sq_metapolygon_glue_grid(Q, h, (uint32_t)w[s], len[m], 1, err);
+        if (st) return st;
+        /* corner prev is untouched (k >= 3): the new corners of side m lie
+         * len[prev] + w and len[prev] + w + len[m] edges after it */
+        assert(k >= 3);
+        corner_v[m] = walk_boundary(Q, corner_v[prev], (uint64_t)len[prev] + (uint64_t)w[s]);
+        corner_v[next] = walk_boundary(Q, corner_v[m], len[m]);
+        assert(Q->v_nface[corner_v[m]] == 1 && Q->v_nface[corner_v[next]] == 1);
+        len[prev] += (uint32_t)w[s];
+        len[next] += (uint32_t)w[s];
+    }
+    return SQ_OK;
+}
+
+/* 1 if gluing all identified sides gives a simple closed quad mesh (every
+ * edge determined by its two vertices, no quad with a repeated vertex). */
+static int glued_is_simple(const sq_domain *D)
+{
+    sq_soup soup;
+    if (sq_domain_glue(D, NULL, &soup, NULL, NULL)) return 0;
+    sq_mesh m;
+    sq_status st = sq_mesh_from_soup(&soup, SQ_MESH_ALLOW_POLYGONS | SQ_MESH_SKIP_DEGENERATE, &m,
+                                     NULL);
+    sq_soup_free(&soup);
+    if (st == SQ_OK) sq_mesh_free(&m);
+    return st == SQ_OK;
+}
+
+sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncones,
+                          const sq_domain_options *opt, sq_domain *D, sq_error *err)
+{
+    double t0 = now_seconds();
+    sq_domain_init(D);
+    D->genus = genus;
+    sq_status st = sq_valences_check_realizable(ncones, valences, genus, err);
+    if (st) return st;
+    if (genus < 2)
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "genus %u needs several pieces or slides (seed 6.2, 6.4, 6.5), "
+                            "which this version does not build yet; genus >= 2 is supported",
+                            genus);
+
+    /* cones of valence 4 are regular points: not part of the construction */
+    uint32_t *irr = malloc(((size_t)ncones + 1) * sizeof *irr);
+    D->order = malloc(((size_t)ncones + 1) * sizeof *D->order);
+    if (!irr || !D->order) {
+        free(irr);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    }
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < ncones; i++)
+        if (valences[i] != 4) irr[n++] = (uint32_t)valences[i];
+    D->ncones = n;
+    /* seed 5.2: positive excess first */
+    st = sq_valence_order_admissible(irr, n, D->order, err);
+    free(irr);
+    if (st) goto fail;
+
+    /* seed 5.1-5.2: the metapolygon */
+    st = sq_metapolygon_build(&D->meta, D->order, n, opt ? opt->build : NULL, NULL, err);
+    if (st) goto fail;
+
+    /* seed 5.4: subdivide */
+    sq_mp_quads sub;
+    st = sq_metapolygon_subdivide(&D->meta, &sub, err);
+    if (st) goto fail;
+    const uint32_t k = sub.ncorner;
+    if (k != 8 * genus - 4) {
+        sq_mp_quads_free(&sub);
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "metapolygon has %u corners, expected 8g-4 = %u",
+                          k, 8 * genus - 4);
+        goto fail;
+    }
+    D->k = k;
+    D->quads_unpadded = sub.mesh.nf;
+    D->nf_unpadded = sub.mesh.nf;
+    D->f_meta_face = malloc((size_t)sub.mesh.nf * sizeof *D->f_meta_face);
+    uint32_t *corner_v = malloc((size_t)k * sizeof *corner_v);
+    uint32_t *len = malloc((size_t)k * sizeof *len);
+    D->corner_vert = malloc((size_t)k * sizeof *D->corner_vert);
+    D->side_len = malloc((size_t)k * sizeof *D->side_len);
+    D->padding = malloc((size_t)k * sizeof *D->padding);
+    if (!D->f_meta_face || !corner_v || !len || !D->corner_vert || !D->side_len || !D->padding) {
+        sq_mp_quads_free(&sub);
+        free(corner_v), free(len);
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    for (uint32_t f = 0; f < sub.mesh.nf; f++) D->f_meta_face[f] = D->meta.he_face[sub.f_origin[f]];
+    for (uint32_t j = 0; j < k; j++) {
+        corner_v[j] = sub.bnd_vert[sub.corner_pos[j]];
+        len[j] = sub.side_len[j];
+    }
+    /* take the quad mesh over */
+    D->quads = sub.mesh;
+    sq_metapolygon_init(&sub.mesh);
+    sq_mp_quads_free(&sub);
+
+    /* the pattern */
+    if (opt && opt->pattern) st = sq_pattern_copy(&D->pattern, opt->pattern, err);
+    else st = sq_pattern_canonical(genus, &D->pattern, err);
+    if (st == SQ_OK && D->pattern.k != k)
+        st = sq_error_set(err, SQ_ERR_ARGUMENT, "the pattern has %u sides, genus %u needs %u",
+                          D->pattern.k, genus, k);
+    if (st == SQ_OK) {
+        sq_pattern_info info;
+        st = sq_pattern_validate(&D->pattern, &info, err);
+        if (st == SQ_OK && info.genus != genus)
+            st = sq_error_set(err, SQ_ERR_ARGUMENT, "the pattern has genus %u, not %u",
+                              info.genus, genus);
+    }
+    if (st) {
+        free(corner_v), free(len);
+        goto fail;
+    }
+
+    /* seed 6.3, 9.3: padding numbers for every side correspondence; the
+     * cheapest whose glued mesh is simple (no two quads sharing two edges,
+     * no quad touching itself: tiny sides of one face can glue that way)
+     * wins */
+    offset_choice *choice = NULL;
+    uint32_t nchoice = feasible_offsets(&D->pattern, len, opt ? opt->offset : SQ_NONE,
+                                        D->quads_unpadded, &choice, err);
+    D->offsets_feasible = nchoice;
+    if (nchoice == 0) {
+        free(choice), free(corner_v), free(len);
+        st = err && err->code ? err->code : SQ_ERR_ARGUMENT;
+        goto fail;
+    }
+    sq_metapolygon unpadded;
+    sq_metapolygon_init(&unpadded);
+    uint32_t *corner0 = malloc((size_t)k * sizeof *corner0), *len0 = malloc((size_t)k * sizeof *len0);
+    if (!corner0 || !len0) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    if (st == SQ_OK) {
+        memcpy(corner0, corner_v, (size_t)k * sizeof *corner0);
+        memcpy(len0, len, (size_t)k * sizeof *len0);
+        st = sq_metapolygon_copy(&unpadded, &D->quads, err);
+    }
+    uint32_t simple_found = 0, tried = 0;
+    for (uint32_t c = 0; c < nchoice && st == SQ_OK && !simple_found; c++) {
+        if (choice[c].d != 1) continue; /* refinement: not built yet, see below */
+        tried++;
+        if (c > 0 || tried > 1) {
+            st = sq_metapolygon_copy(&D->quads, &unpadded, err);
+            memcpy(corner_v, corner0, (size_t)k * sizeof *corner_v);
+            memcpy(len, len0, (size_t)k * sizeof *len);
+            if (st) break;
+        }
+        D->offset = choice[c].offset;
+        D->refine = choice[c].d;
+        memcpy(D->padding, choice[c].w, (size_t)k * sizeof *D->padding);
+        /* seed 6.1: glue the padding strips */
+        st = apply_padding(&D->quads, k, D->offset, D->padding, corner_v, len, err);
+        if (st) break;
+        for (uint32_t i = 0; i < k; i++) {
+            D->corner_vert[i] = corner_v[(i + D->offset) % k];
+            D->side_len[i] = len[(i + D->offset) % k];
+        }
+        D->quads_added = D->quads.nf - D->quads_unpadded;
+        if (D->quads_added != choice[c].added)
+            st = sq_error_set(err, SQ_ERR_INTERNAL,
+                              "padding added %llu quads, the solver predicted %llu",
+                              (unsigned long long)D->quads_added,
+                              (unsigned long long)choice[c].added);
+        for (uint32_t i = 0; i < k && st == SQ_OK; i++) {
+            if (D->side_len[i] != D->side_len[D->pattern.partner[i]])
+                st = sq_error_set(err, SQ_ERR_INTERNAL,
+                                  "after padding side %u has %u edges, its partner %u has %u", i,
+                                  D->side_len[i], D->pattern.partner[i],
+                                  D->side_len[D->pattern.partner[i]]);
+        }
+        if (st == SQ_OK) simple_found = glued_is_simple(D);
+    }
+    for (uint32_t c = 0; c < nchoice; c++) free(choice[c].w);
+    free(choice), free(corner0), free(len0);
+    sq_metapolygon_free(&unpadded);
+    if (st == SQ_OK && !simple_found)
+        st = sq_error_set(err, SQ_ERR_INTERNAL,
+                          "none of the %u feasible side correspondences (%u without "
+                          "refinement) glues into a simple quad mesh; refinement is not built "
+                          "yet",
+                          nchoice, tried);
+    free(corner_v), free(len);
+    if (st) goto fail;
+    D->seconds = now_seconds() - t0;
+    return SQ_OK;
+fail:
+    sq_domain_free(D);
+    return st;
+}
+
+/* ---- gluing ------------------------------------------------------------- */
+
+static uint32_t uf_find(uint32_t *parent, uint32_t x)
+{
+    while (parent[x] != x) {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    return x;
+}
+
+sq_status sq_domain_glue(const sq_domain *D, const double *xy, sq_soup *out,
+                         uint32_t *closed_of, sq_error *err)
+{
+    const sq_metapolygon *Q = &D->quads;
+    memset(out, 0, sizeof *out);
+    uint32_t maxlen = 0;
+    for (uint32_t i = 0; i < D->k; i++)
+        if (D->side_len[i] > maxlen) maxlen = D->side_len[i];
+    uint32_t *parent = malloc((size_t)Q->nv * sizeof *parent);
+    uint32_t *id = malloc((size_t)Q->nv * sizeof *id);
+    uint32_t *a = malloc(((size_t)maxlen + 1) * sizeof *a);
+    uint32_t *b = malloc(((size_t)maxlen + 1) * sizeof *b);
+    sq_status st = SQ_OK;
+    if (!parent || !id || !a || !b) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t v = 0; v < Q->nv; v++) parent[v] = v;
+    for (uint32_t i = 0; i < D->k; i++) {
+        uint32_t j = D->pattern.partner[i];
+        if (j < i) continue;
+        uint32_t L = D->side_len[i];
+        if (D->side_len[j] != L) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "sides %u and %u differ in length", i, j);
+            goto done;
+        }
+        sq_domain_side_vertices(D, i, a);
+        sq_domain_side_vertices(D, j, b);
+        /* side i forward glues to side j backward */
+        for (uint32_t t = 0; t <= L; t++) {
+            uint32_t ra = uf_find(parent, a[t]), rb = uf_find(parent, b[L - t]);
+            if (ra != rb) parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
+        }
+    }
+    uint32_t nc = 0;
+    for (uint32_t v = 0; v < Q->nv; v++) id[v] = SQ_NONE;
+    for (uint32_t v = 0; v < Q->nv; v++) {
+        uint32_t r = uf_find(parent, v);
+        if (id[r] == SQ_NONE) id[r] = nc++;
+        id[v] = id[r];
+    }
+    out->nv = nc;
+    out->nf = Q->nf;
+    out->pos = calloc(3 * (size_t)nc, sizeof *out->pos);
+    out->face_off = malloc(((size_t)Q->nf + 1) * sizeof *out->face_off);
+    out->face_idx = malloc(4 * (size_t)Q->nf * sizeof *out->face_idx);
+    if (!out->pos || !out->face_off || !out->face_idx) {
+        sq_soup_free(out);
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    if (xy) {
+        for (uint32_t v = Q->nv; v-- > 0;) { /* lowest index wins */
+            out->pos[3 * (size_t)id[v]] = xy[2 * (size_t)v];
+            out->pos[3 * (size_t)id[v] + 1] = xy[2 * (size_t)v + 1];
+        }
+    }
+    uint32_t c = 0;
+    for (uint32_t f = 0; f < Q->nf; f++) {
+        out->face_off[f] = c;
+        uint32_t h0 = Q->f_he[f], h = h0;
+        do {
+            out->face_idx[c++] = id[Q->he_vert[h]];
+            h = Q->he_next[h];
+        } while (h != h0 && c < 4 * (size_t)Q->nf);
+    }
+    out->face_off[Q->nf] = c;
+    if (closed_of) memcpy(closed_of, id, (size_t)Q->nv * sizeof *id);
+done:
+    free(parent), free(id), free(a), free(b);
+    return st;
+}
+
+/* ---- verification -------------------------------------------------------- */
+
+static int cmp_i32(const void *x, const void *y)
+{
+    int32_t a = *(const int32_t *)x, b = *(const int32_t *)y;
+    return (a > b) - (a < b);
+}
+
+sq_status sq_domain_verify(const sq_domain *D, const int32_t *valences, uint32_t ncones,
+                           sq_error *err)
+{
+    const sq_metapolygon *Q = &D->quads;
+    sq_status st = sq_metapolygon_validate(Q, 0, err);
+    if (st) return st;
+    for (uint32_t f = 0; f < Q->nf; f++)
+        if (Q->f_valence[f] != 4)
+            return sq_error_set(err, SQ_ERR_INTERNAL, "face %u of Q has %u sides", f,
+                                Q->f_valence[f]);
+    /* corners: exactly the k corner vertices have one face */
+    uint32_t ncorner = 0;
+    for (uint32_t v = 0; v < Q->nv; v++) ncorner += Q->v_nface[v] == 1;
+    if (ncorner != D->k)
+        return sq_error_set(err, SQ_ERR_INTERNAL, "Q has %u corners, expected %u", ncorner, D->k);
+    uint64_t perimeter = 0;
+    for (uint32_t i = 0; i < D->k; i++) {
+        if (Q->v_nface[D->corner_vert[i]] != 1)
+            return sq_error_set(err, SQ_ERR_INTERNAL, "corner %u (vertex %u) is not a corner", i,
+                                D->corner_vert[i]);
+        if (walk_boundary(Q, D->corner_vert[i], D->side_len[i]) != D->corner_vert[(i + 1) % D->k])
+            return sq_error_set(err, SQ_ERR_INTERNAL, "side %u does not end at corner %u", i,
+                                (i + 1) % D->k);
+        if (D->side_len[i] != D->side_len[D->pattern.partner[i]])
+            return sq_error_set(err, SQ_ERR_INTERNAL, "sides %u and %u differ in length", i,
+                                D->pattern.partner[i]);
+        perimeter += D->side_len[i];
+    }
+    if (perimeter != Q->nbnd)
+        return sq_error_set(err, SQ_ERR_INTERNAL, "sides cover %llu of %u boundary edges",
+                            (unsigned long long)perimeter, Q->nbnd);
+
+    /* glue and check the closed mesh with the input validator */
+    sq_soup soup;
+    st = sq_domain_glue(D, NULL, &soup, NULL, err);
+    if (st) return st;
+    sq_mesh m;
+    st = sq_mesh_from_soup(&soup, SQ_MESH_ALLOW_POLYGONS | SQ_MESH_SKIP_DEGENERATE, &m, err);
+    sq_soup_free(&soup);
+    if (st) {
+        char msg[SQ_ERROR_MSG_MAX];
+        snprintf(msg, sizeof msg, "%s", err ? err->msg : "");
+        return sq_error_set(err, SQ_ERR_INTERNAL, "the glued domain is not a valid closed mesh: %s",
+                            msg);
+    }
+    if (sq_mesh_genus(&m) != (int64_t)D->genus) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "the glued domain has genus %lld, expected %u",
+                          (long long)sq_mesh_genus(&m), D->genus);
+        sq_mesh_free(&m);
+        return st;
+    }
+    int32_t *got = malloc(((size_t)m.nv + 1) * sizeof *got);
+    int32_t *want = malloc(((size_t)ncones + 1) * sizeof *want);
+    uint32_t ng = 0, nw = 0;
+    if (!got || !want) {
+        free(got), free(want);
+        sq_mesh_free(&m);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    }
+    for (uint32_t v = 0; v < m.nv; v++) {
+        uint32_t val = sq_mesh_vertex_valence(&m, v);
+        if (val != 4) got[ng++] = (int32_t)val;
+    }
+    for (uint32_t i = 0; i < ncones; i++)
+        if (valences[i] != 4) want[nw++] = valences[i];
+    qsort(got, ng, sizeof *got, cmp_i32);
+    qsort(want, nw, sizeof *want, cmp_i32);
+    if (ng != nw || memcmp(got, want, (size_t)ng * sizeof *got))
+        st = sq_error_set(err, SQ_ERR_INTERNAL,
+                          "the glued domain has %u irregular vertices, expected %u cones "
+                          "(multisets differ)",
+                          ng, nw);
+    free(got), free(want);
+    sq_mesh_free(&m);
+    return st;
+}
