@@ -41,7 +41,7 @@ sq_status sq_disk_layout_tutte(const sq_metapolygon *P, uint32_t start, double *
     if (ni == 0) goto done;
 
     /* uniform Laplacian over the interior: L x = sum of boundary neighbours */
-    size_t cap = (size_t)P->nh + ni, nnz = 0;
+    size_t cap = 2 * (size_t)P->nh, nnz = 0;
     uint32_t *ri = malloc(cap * sizeof *ri), *ci = malloc(cap * sizeof *ci);
     double *val = malloc(cap * sizeof *val);
     double *rhs = calloc(2 * (size_t)ni, sizeof *rhs), *sol = malloc(2 * (size_t)ni * sizeof *sol);

@@ -63,6 +63,10 @@ void sq_domain_side_vertices(const sq_domain *D, uint32_t side, uint32_t *verts)
     }
 }
 
+/* Offsets whose padding is improved by the solver's descent (phase 2)
+ * when there are more than 36 sides (genus > 5); below, all of them. */
+#define DESCENT_CANDIDATES 6u
+
 /* One feasible side correspondence (seed 6.3): offset, padding, cost. */
 typedef struct offset_choice {
     uint32_t offset;
@@ -104,7 +108,9 @@ static uint32_t feasible_offsets(const sq_pattern *pat, const uint32_t *meta_len
         memset(&res, 0, sizeof res);
         res.w = w;
         sq_error e2;
-        if (sq_pad_solve_pattern(pat, L, NULL, &res, &e2) != SQ_OK) {
+        /* phase 1: the first feasible point of every offset (cheap) */
+        sq_pad_options popt = {SQ_PAD_OPT_NO_DESCENT, 0};
+        if (sq_pad_solve_pattern(pat, L, &popt, &res, &e2) != SQ_OK) {
             if (err) *err = e2;
             free(w);
             continue;
@@ -117,8 +123,23 @@ static uint32_t feasible_offsets(const sq_pattern *pat, const uint32_t *meta_len
         c[n].w = w;
         n++;
     }
-    free(L);
     qsort(c, n, sizeof *c, cmp_choice);
+    /* phase 2: improve the most promising offsets by the solver's descent
+     * (seed 9.3: fewest quads), then sort again */
+    const uint32_t refine_top = k <= 36 || n < DESCENT_CANDIDATES ? n : DESCENT_CANDIDATES;
+    for (uint32_t t = 0; t < refine_top; t++) {
+        for (uint32_t i = 0; i < k; i++) L[i] = meta_len[(i + c[t].offset) % k];
+        sq_pad_result res;
+        memset(&res, 0, sizeof res);
+        res.w = c[t].w;
+        if (sq_pad_solve_pattern(pat, L, NULL, &res, NULL) != SQ_OK) continue;
+        c[t].d = res.d;
+        c[t].added = res.added_quads;
+        c[t].total = (long double)res.d * (long double)res.d * (long double)quads0 +
+                     (long double)res.added_quads;
+    }
+    qsort(c, refine_top, sizeof *c, cmp_choice);
+    free(L);
     *out = c;
     return n;
 }
