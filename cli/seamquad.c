@@ -12,7 +12,7 @@ typedef struct subcommand {
 
 static const subcommand commands[] = {
     {"check", sq_cmd_check, "validate a mesh and its cones: can seamquad process them?"},
-    {"cones", NULL, "compute cones from a smooth cross field (planned)"},
+    {"cones", sq_cmd_cones, "compute cones from a smooth cross field"},
     {"domain", sq_cmd_domain, "build the combinatorial seamless domain of a cone set"},
     {"param", NULL, "seamless, locally injective parametrization of a mesh (planned)"},
     {"quantize", NULL, "optimize distortion, then quantize to an integer grid (planned)"},
