@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "sq_cones.h"
+#include "sq_domain_internal.h"
 #include "sq_mesh.h"
 #include "sq_metapolygon_subdivide.h"
 #include "sq_padding.h"
@@ -63,6 +64,9 @@ void sq_domain_side_vertices(const sq_domain *D, uint32_t side, uint32_t *verts)
     }
 }
 
+/* Most side correspondences tried (seed 9.3 search). */
+#define MAX_OFFSETS 40u
+
 /* Offsets whose padding is improved by the solver's descent (phase 2)
  * when there are more than 36 sides (genus > 5); below, all of them. */
 #define DESCENT_CANDIDATES 6u
@@ -99,8 +103,11 @@ static uint32_t feasible_offsets(const sq_pattern *pat, const uint32_t *meta_len
         *out = NULL;
         return 0;
     }
+    /* every offset while k is small; beyond, an evenly spread sample (each
+     * solve is an exact elimination of size k: k solves would cost k^4) */
+    const uint32_t stride = k <= MAX_OFFSETS ? 1 : (k + MAX_OFFSETS - 1) / MAX_OFFSETS;
     for (uint32_t o = 0; o < k; o++) {
-        if (fixed != SQ_NONE && o != fixed) continue;
+        if (fixed != SQ_NONE ? o != fixed : o % stride != 0) continue;
         for (uint32_t i = 0; i < k; i++) L[i] = meta_len[(i + o) % k];
         int64_t *w = malloc((size_t)k * sizeof *w);
         if (!w) break;
@@ -173,7 +180,7 @@ static sq_status apply_padding(sq_metapolygon *Q, uint32_t k, uint32_t offset, c
 
 /* 1 if gluing all identified sides gives a simple closed quad mesh (every
  * edge determined by its two vertices, no quad with a repeated vertex). */
-static int glued_is_simple(const sq_domain *D)
+int sq_domain_glued_is_simple(const sq_domain *D)
 {
     sq_soup soup;
     if (sq_domain_glue(D, NULL, &soup, NULL, NULL)) return 0;
@@ -193,11 +200,6 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
     D->genus = genus;
     sq_status st = sq_valences_check_realizable(ncones, valences, genus, err);
     if (st) return st;
-    if (genus < 2)
-        return sq_error_set(err, SQ_ERR_ARGUMENT,
-                            "genus %u needs several pieces or slides (seed 6.2, 6.4, 6.5), "
-                            "which this version does not build yet; genus >= 2 is supported",
-                            genus);
 
     /* cones of valence 4 are regular points: not part of the construction */
     uint32_t *irr = malloc(((size_t)ncones + 1) * sizeof *irr);
@@ -210,6 +212,15 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
     for (uint32_t i = 0; i < ncones; i++)
         if (valences[i] != 4) irr[n++] = (uint32_t)valences[i];
     D->ncones = n;
+    if (genus < 2) {
+        memcpy(D->order, irr, (size_t)n * sizeof *irr);
+        st = genus == 0 ? sq_domain_build_genus0(irr, n, opt, D, err)
+                        : sq_domain_build_genus1(irr, n, opt, D, err);
+        free(irr);
+        if (st) goto fail;
+        D->seconds = now_seconds() - t0;
+        return SQ_OK;
+    }
     /* seed 5.2: positive excess first */
     st = sq_valence_order_admissible(irr, n, D->order, err);
     free(irr);
@@ -296,18 +307,30 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
         st = sq_metapolygon_copy(&unpadded, &D->quads, err);
     }
     uint32_t simple_found = 0, tried = 0;
-    for (uint32_t c = 0; c < nchoice && st == SQ_OK && !simple_found; c++) {
-        if (choice[c].d != 1) continue; /* refinement: not built yet, see below */
+    /* pass 0: the solver's padding; pass 1: one more layer on every side
+     * (the all-ones shift keeps every pair equal, seamless-notes 3), which
+     * moves the glued sides apart when short sides of one face would glue
+     * into a double edge */
+    for (uint32_t c = 0; c < 2 * nchoice && st == SQ_OK && !simple_found; c++) {
+        const uint32_t pass = c / nchoice, ci = c % nchoice;
+        if (choice[ci].d != 1) continue; /* refinement: not built yet, see below */
+        if (pass == 1 && tried >= nchoice + 3) break;
         tried++;
-        if (c > 0 || tried > 1) {
+        if (tried > 1) { /* undo the previous attempt */
             st = sq_metapolygon_copy(&D->quads, &unpadded, err);
             memcpy(corner_v, corner0, (size_t)k * sizeof *corner_v);
             memcpy(len, len0, (size_t)k * sizeof *len);
             if (st) break;
         }
-        D->offset = choice[c].offset;
-        D->refine = choice[c].d;
-        memcpy(D->padding, choice[c].w, (size_t)k * sizeof *D->padding);
+        D->offset = choice[ci].offset;
+        D->refine = choice[ci].d;
+        memcpy(D->padding, choice[ci].w, (size_t)k * sizeof *D->padding);
+        uint64_t expect_added = choice[ci].added;
+        if (pass == 1) {
+            /* the solver did not count these quads: no prediction */
+            for (uint32_t i = 0; i < k; i++) D->padding[i] += 1;
+            expect_added = UINT64_MAX;
+        }
         /* seed 6.1: glue the padding strips */
         st = apply_padding(&D->quads, k, D->offset, D->padding, corner_v, len, err);
         if (st) break;
@@ -316,11 +339,11 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
             D->side_len[i] = len[(i + D->offset) % k];
         }
         D->quads_added = D->quads.nf - D->quads_unpadded;
-        if (D->quads_added != choice[c].added)
+        if (expect_added != UINT64_MAX && D->quads_added != expect_added)
             st = sq_error_set(err, SQ_ERR_INTERNAL,
                               "padding added %llu quads, the solver predicted %llu",
                               (unsigned long long)D->quads_added,
-                              (unsigned long long)choice[c].added);
+                              (unsigned long long)expect_added);
         for (uint32_t i = 0; i < k && st == SQ_OK; i++) {
             if (D->side_len[i] != D->side_len[D->pattern.partner[i]])
                 st = sq_error_set(err, SQ_ERR_INTERNAL,
@@ -328,7 +351,7 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
                                   D->side_len[i], D->pattern.partner[i],
                                   D->side_len[D->pattern.partner[i]]);
         }
-        if (st == SQ_OK) simple_found = glued_is_simple(D);
+        if (st == SQ_OK) simple_found = sq_domain_glued_is_simple(D);
     }
     for (uint32_t c = 0; c < nchoice; c++) free(choice[c].w);
     free(choice), free(corner0), free(len0);
@@ -450,16 +473,23 @@ sq_status sq_domain_verify(const sq_domain *D, const int32_t *valences, uint32_t
         if (Q->f_valence[f] != 4)
             return sq_error_set(err, SQ_ERR_INTERNAL, "face %u of Q has %u sides", f,
                                 Q->f_valence[f]);
-    /* corners: exactly the k corner vertices have one face */
-    uint32_t ncorner = 0;
+    /* corners: the right-angle corners of the pattern are exactly the
+     * boundary vertices with one quad; straight corners have two. Genus 0
+     * (seed 6.5) is the sphere cut along one edge: its two "corners" are
+     * the edge's ends, with their full set of quads. */
+    uint32_t ncorner = 0, nright = 0;
     for (uint32_t v = 0; v < Q->nv; v++) ncorner += Q->v_nface[v] == 1;
-    if (ncorner != D->k)
-        return sq_error_set(err, SQ_ERR_INTERNAL, "Q has %u corners, expected %u", ncorner, D->k);
+    for (uint32_t i = 0; i < D->k; i++) nright += !D->pattern.straight[i];
+    if (D->genus > 0 && ncorner != nright)
+        return sq_error_set(err, SQ_ERR_INTERNAL, "Q has %u corners, expected %u", ncorner,
+                            nright);
     uint64_t perimeter = 0;
     for (uint32_t i = 0; i < D->k; i++) {
-        if (Q->v_nface[D->corner_vert[i]] != 1)
-            return sq_error_set(err, SQ_ERR_INTERNAL, "corner %u (vertex %u) is not a corner", i,
-                                D->corner_vert[i]);
+        uint32_t want = D->pattern.straight[i] ? 2 : 1;
+        if (D->genus > 0 && Q->v_nface[D->corner_vert[i]] != want)
+            return sq_error_set(err, SQ_ERR_INTERNAL,
+                                "corner %u (vertex %u) has %u quads, expected %u", i,
+                                D->corner_vert[i], Q->v_nface[D->corner_vert[i]], want);
         if (walk_boundary(Q, D->corner_vert[i], D->side_len[i]) != D->corner_vert[(i + 1) % D->k])
             return sq_error_set(err, SQ_ERR_INTERNAL, "side %u does not end at corner %u", i,
                                 (i + 1) % D->k);
