@@ -49,8 +49,9 @@ static void help(FILE *f)
             "  --json            machine-readable statistics on stdout\n"
             "  -h, --help        this help\n"
             "\n"
-            "Supported now: genus >= 2. Genus 0 and 1 need several pieces or slides\n"
-            "(seed 6.2-6.5) and are not built yet.\n"
+            "Genus 0 (seed 6.5): four meta-2-gons padded and glued into a sphere, cut\n"
+            "along one edge. Genus 1 (seed 6.2): several pieces. Genus >= 2: one\n"
+            "piece; the pattern must pass the rank test (docs/padding.md).\n"
             "\n"
             "example:\n"
             "  seamquad domain --genus 3 --valences 3,3,3,3,3,3,5,7,22 -o helmet\n");
@@ -316,8 +317,9 @@ int sq_cmd_domain(int argc, char **argv)
         printf("metapolygon    %u faces\n", D.meta.nf);
         printf("quads          %llu before padding + %llu padding = %u\n",
                (unsigned long long)D.quads_unpadded, (unsigned long long)D.quads_added, D.quads.nf);
-        printf("correspondence offset %u (%u of %u feasible), refinement %llu\n", D.offset,
-               D.offsets_feasible, D.k, (unsigned long long)D.refine);
+        if (D.genus >= 2)
+            printf("correspondence offset %u (%u of %u feasible), refinement %llu\n", D.offset,
+                   D.offsets_feasible, D.k, (unsigned long long)D.refine);
         printf("verified       sides pair up with equal lengths; glued mesh closed, genus %u, "
                "irregular vertices = cones\n",
                D.genus);

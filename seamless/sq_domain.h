@@ -12,11 +12,13 @@
  * fewest added quads (seed 6.3, 9.3) -> padding strips glued to Q (seed
  * 6.1) -> sides, corners and the gluing map.
  *
- * Scope of this version: genus >= 2 with one piece and no slide, which
- * suffices whenever the pattern passes the rank test (seamless-notes 7; the
- * canonical patterns of sq_pattern_canonical all do). Genus 0 and 1 need
- * several pieces or slides (seed 6.2, 6.4, 6.5) and are reported as
- * SQ_ERR_ARGUMENT for now. */
+ * Genus 0 (seed 6.5; sq_domain_genus0.c): four meta-2-gons, padded instead
+ * of refined, glued into a sphere, which is cut along one edge (k = 2).
+ * Genus 1 (seed 6.2; sq_domain_genus1.c): several pieces. Genus >= 2: one
+ * piece without a slide, which suffices whenever the pattern passes the rank
+ * test (seamless-notes 7; the canonical patterns of sq_pattern_canonical all
+ * do).
+ */
 #ifndef SQ_DOMAIN_H
 #define SQ_DOMAIN_H
 
