@@ -104,9 +104,11 @@ static sq_status write_sides(const sq_domain *D, const char *path, sq_error *err
     fprintf(f, "# seamquad domain sides (docs/domain.md)\n");
     fprintf(f, "genus %u\nsides %u\noffset %u\nrefinement %llu\n", D->genus, D->k, D->offset,
             (unsigned long long)D->refine);
-    fprintf(f, "# corner INDEX VERTEX   (0-based vertex of PREFIX.quad.obj; side INDEX starts at "
-               "corner INDEX)\n");
-    for (uint32_t i = 0; i < D->k; i++) fprintf(f, "corner %u %u\n", i, D->corner_vert[i]);
+    fprintf(f, "# corner INDEX VERTEX [straight]   (0-based vertex of PREFIX.quad.obj; side "
+               "INDEX starts at corner INDEX; 'straight': a 180-degree corner, else 90)\n");
+    for (uint32_t i = 0; i < D->k; i++)
+        fprintf(f, "corner %u %u%s\n", i, D->corner_vert[i],
+                D->pattern.straight[i] ? " straight" : "");
     fprintf(f, "# side INDEX LENGTH PARTNER PADDING   (side INDEX runs from corner INDEX to "
                "corner INDEX+1 and is glued, reversed, to side PARTNER; LENGTH in quad edges; "
                "PADDING = layers added on it)\n");
@@ -295,7 +297,8 @@ int sq_cmd_domain(int argc, char **argv)
                (unsigned long long)D.quads_unpadded, (unsigned long long)D.quads_added);
         printf("  \"quads\": %u,\n  \"offset\": %u,\n  \"offsets_feasible\": %u,\n", D.quads.nf,
                D.offset, D.offsets_feasible);
-        printf("  \"slide\": null,\n  \"pieces\": 1,\n  \"refinement\": %llu,\n",
+        printf("  \"slide\": null,\n  \"pieces\": %u,\n  \"refinement\": %llu,\n",
+               D.genus == 0 ? 4u : D.genus == 1 && D.k == 6 ? 2u : 1u,
                (unsigned long long)D.refine);
         printf("  \"padding\": [");
         for (uint32_t i = 0; i < D.k; i++) printf("%s%lld", i ? ", " : "", (long long)D.padding[i]);

@@ -109,9 +109,11 @@ sq_status sq_domain_write_svg(const sq_domain *D, const char *path, sq_error *er
     double width = Q->nf > 20000 ? 0.05 : Q->nf > 2000 ? 0.15 : 0.4;
     fprintf(f, "<g>\n");
     for (uint32_t face = 0; face < Q->nf; face++) {
-        const char *fill = face < D->nf_unpadded
-                               ? valence_fill(P->f_valence[D->f_meta_face[face]])
-                               : "#b8e186";
+        /* faces: the first piece's subdivision (by valence), the other
+         * pieces' subdivision (genus 0 and 1, light blue), padding (green) */
+        const char *fill = face < D->nf_unpadded ? valence_fill(P->f_valence[D->f_meta_face[face]])
+                           : face < D->quads_unpadded ? "#c6dbef"
+                                                      : "#b8e186";
         face_poly(f, Q, qxy, face, ox, fill, "#555555", width);
     }
     /* sides by pair */
@@ -147,8 +149,8 @@ sq_status sq_domain_write_svg(const sq_domain *D, const char *path, sq_error *er
     }
     fprintf(f, "</g>\n");
     fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" font-size=\"12\">faces by valence: 2, 3 warm; 4 "
-               "grey; 5, 6, 7 cool. Sides labelled side:length, one colour per identified "
-               "pair; yellow: corners; dots: cones; green: padding</text>\n",
+               "grey; 5, 6, 7 cool; other pieces light blue. Sides labelled side:length, one "
+               "colour per pair; yellow: corners; dots: cones; green: padding</text>\n",
             MARGIN, H - 14);
     fprintf(f, "</svg>\n");
     free(pxy), free(qxy), free(pair);
