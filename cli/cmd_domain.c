@@ -231,14 +231,23 @@ int sq_cmd_domain(int argc, char **argv)
         val = malloc((size_t)mesh.nv * sizeof *val);
         if (!val) {
             sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
-        } else if (sq_cones_read(cones_path, mesh.nv, val, NULL, &err) == SQ_OK) {
+        } else if (sq_cones_read(cones_path, mesh.nv, val, NULL, &err) == SQ_OK &&
+                   sq_cones_check_realizable(mesh.nv, val, genus, &err) == SQ_OK) {
             nval = 0;
             for (uint32_t v = 0; v < mesh.nv; v++)
                 if (val[v] != 4) val[nval++] = val[v];
         }
         sq_mesh_free(&mesh);
         sq_soup_free(&soup);
-        if (err.code) goto fail;
+        if (err.code) {
+            if (err.code == SQ_ERR_UNREALIZABLE || err.code == SQ_ERR_GAUSS_BONNET ||
+                err.code == SQ_ERR_CONE_VALUE) {
+                char msg[SQ_ERROR_MSG_MAX];
+                snprintf(msg, sizeof msg, "%s", err.msg);
+                sq_error_set(&err, err.code, "%s: %s", cones_path, msg);
+            }
+            goto fail;
+        }
     } else if (!parse_valences(valences_arg, &val, &nval)) {
         fprintf(stderr, "seamquad domain: --valences needs comma-separated integers, got '%s'\n",
                 valences_arg);

@@ -243,17 +243,17 @@ static sq_status check_realizable(uint32_t n, const int32_t *valence, const uint
 {
     for (uint32_t i = 0; i < n; i++) {
         if (valence[i] >= 2) continue;
-        char who[48] = "a cone";
-        if (index_is_vertex) snprintf(who, sizeof who, "vertex %u", i);
+        char who[48] = "the cone set has";
+        if (index_is_vertex) snprintf(who, sizeof who, "vertex %u has", i);
         if (valence[i] == 1)
             return sq_error_set(err, SQ_ERR_UNREALIZABLE,
-                                "%s has a cone of valence 1 (angle pi/2): valence 1 is outside "
+                                "%s a cone of valence 1 (angle pi/2): valence 1 is outside "
                                 "the construction (seed Def. 5.4 needs valence >= 2, and a quad "
                                 "mesh vertex of valence 1 repeats a vertex in its quad); merge "
                                 "it with a neighbouring cone or move its curvature elsewhere",
                                 who);
         return sq_error_set(err, SQ_ERR_CONE_VALUE,
-                            "%s has valence %d: a cone of angle k*pi/2 needs k >= 1", who,
+                            "%s a cone of valence %d: a cone of angle k*pi/2 needs k >= 1", who,
                             (int)valence[i]);
     }
     int64_t s = defect_sum(n, valence);
