@@ -81,10 +81,10 @@ sq_status sq_cut_graph_check(const sq_mesh *m, const uint8_t *cone, const sq_cut
         corner[h] = h;
     for (uint32_t h = 0; h < m->nh; ++h)
         if (!G->he_cut[h])
-            sq_cut_uf_union(corner, h, sq_cut_rot(m, h));
+            sq_uf_union(corner, h, sq_cut_rot(m, h));
     int64_t vc = 0;
     for (uint32_t h = 0; h < m->nh; ++h)
-        vc += sq_cut_uf_find(corner, h) == h;
+        vc += sq_uf_find(corner, h) == h;
     const int64_t chi = vc - ((int64_t)m->nh / 2 + ncut) + m->nf;
     const uint32_t regions = sq_cut_face_regions(m, G->he_cut, scratch);
     const uint32_t bl = sq_cut_boundary_loops(m, G->he_cut, seen);

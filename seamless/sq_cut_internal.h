@@ -10,6 +10,7 @@
 
 #include "sq_error.h"
 #include "sq_mesh.h"
+#include "sq_union_find.h"
 
 /* Next outgoing halfedge around the origin of c, clockwise (into the face
  * on the right of c). The faces swept from c up to the next cut halfedge
@@ -37,10 +38,6 @@ void sq_cut_heap_free(sq_cut_heap *q);
 int sq_cut_heap_push(sq_cut_heap *q, double key, uint32_t val); /* 0: no memory */
 /* Pops the minimum into *key, *val; returns 0 when empty. */
 int sq_cut_heap_pop(sq_cut_heap *q, double *key, uint32_t *val);
-
-uint32_t sq_cut_uf_find(uint32_t *parent, uint32_t x);
-/* Returns 1 if a and b were in different sets (and joins them). */
-int sq_cut_uf_union(uint32_t *parent, uint32_t a, uint32_t b);
 
 /* Number of connected face regions when faces may not cross halfedges with
  * cut[h] != 0. scratch: nf + nf entries (uint32). */

@@ -174,7 +174,7 @@ sq_status sq_cut_tree_cotree(const sq_mesh *m, const uint8_t *blocked, const uin
             continue;
         const uint32_t u = m->he_vert[h], v = m->he_vert[t];
         if (ws->dist[u] == INFINITY || ws->dist[v] == INFINITY) {
-            sq_cut_uf_union(ws->fparent, m->he_face[h], m->he_face[t]);
+            sq_uf_union(ws->fparent, m->he_face[h], m->he_face[t]);
             continue;
         }
         if (ws->par[v] == h || ws->par[u] == t)
@@ -188,7 +188,7 @@ sq_status sq_cut_tree_cotree(const sq_mesh *m, const uint8_t *blocked, const uin
     uint32_t left = 0;
     for (uint32_t i = 0; i < ne; ++i) {
         const uint32_t h = ws->edges[i].h;
-        if (sq_cut_uf_union(ws->fparent, m->he_face[h], m->he_face[m->he_twin[h]]))
+        if (sq_uf_union(ws->fparent, m->he_face[h], m->he_face[m->he_twin[h]]))
             continue;
         ++left;
         const uint32_t u = m->he_vert[h], v = sq_cut_dest(m, h);

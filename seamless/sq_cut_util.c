@@ -88,28 +88,6 @@ int sq_cut_heap_pop(sq_cut_heap *q, double *key, uint32_t *val)
     return 1;
 }
 
-uint32_t sq_cut_uf_find(uint32_t *parent, uint32_t x)
-{
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
-}
-
-int sq_cut_uf_union(uint32_t *parent, uint32_t a, uint32_t b)
-{
-    a = sq_cut_uf_find(parent, a);
-    b = sq_cut_uf_find(parent, b);
-    if (a == b)
-        return 0;
-    if (a < b)
-        parent[b] = a;
-    else
-        parent[a] = b;
-    return 1;
-}
-
 uint32_t sq_cut_face_regions(const sq_mesh *m, const uint8_t *cut, uint32_t *scratch)
 {
     uint32_t *seen = scratch, *stack = scratch + m->nf;

@@ -13,6 +13,7 @@
 #include "sq_metapolygon_subdivide.h"
 #include "sq_padding.h"
 #include "sq_valence_order.h"
+#include "sq_union_find.h"
 
 void sq_domain_init(sq_domain *D)
 {
@@ -373,15 +374,6 @@ fail:
 
 /* ---- gluing ------------------------------------------------------------- */
 
-static uint32_t uf_find(uint32_t *parent, uint32_t x)
-{
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
-}
-
 sq_status sq_domain_glue(const sq_domain *D, const double *xy, sq_soup *out,
                          uint32_t *closed_of, sq_error *err)
 {
@@ -412,14 +404,14 @@ sq_status sq_domain_glue(const sq_domain *D, const double *xy, sq_soup *out,
         sq_domain_side_vertices(D, j, b);
         /* side i forward glues to side j backward */
         for (uint32_t t = 0; t <= L; t++) {
-            uint32_t ra = uf_find(parent, a[t]), rb = uf_find(parent, b[L - t]);
+            uint32_t ra = sq_uf_find(parent, a[t]), rb = sq_uf_find(parent, b[L - t]);
             if (ra != rb) parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
         }
     }
     uint32_t nc = 0;
     for (uint32_t v = 0; v < Q->nv; v++) id[v] = SQ_NONE;
     for (uint32_t v = 0; v < Q->nv; v++) {
-        uint32_t r = uf_find(parent, v);
+        uint32_t r = sq_uf_find(parent, v);
         if (id[r] == SQ_NONE) id[r] = nc++;
         id[v] = id[r];
     }

@@ -59,6 +59,7 @@
 #include "sq_domain_internal.h"
 #include "sq_metapolygon_subdivide.h"
 #include "sq_valence_order.h"
+#include "sq_union_find.h"
 
 /* Extra padding rounds tried when no layout glues into a simple mesh. */
 #define MAX_EXTRA 4u
@@ -323,21 +324,6 @@ static sq_status pad_side(sq_metapolygon *Q, uint32_t corner[2], uint32_t len[2]
     return SQ_OK;
 }
 
-static uint32_t uf_find(uint32_t *parent, uint32_t x)
-{
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
-}
-
-static void uf_union(uint32_t *parent, uint32_t a, uint32_t b)
-{
-    a = uf_find(parent, a), b = uf_find(parent, b);
-    if (a != b) parent[a < b ? b : a] = a < b ? a : b;
-}
-
 /* The padded pieces of one layout, ready for gluing. */
 typedef struct g0_padded {
     sq_metapolygon W[4];  /* slot j: piece pc[j], padded          */
@@ -447,17 +433,17 @@ static void glue_sphere(const g0_layout *L, g0_padded *G, uint32_t r)
             h1 = G->W[j1].he_next[h1];
         }
         for (uint32_t t = 0; t <= len; t++) {
-            uf_union(G->parent, G->base[j0] + G->W[j0].he_vert[h0], G->cls[len - t]);
+            sq_uf_union(G->parent, G->base[j0] + G->W[j0].he_vert[h0], G->cls[len - t]);
             h0 = G->W[j0].he_next[h0];
         }
     }
     /* the circles, reversed, rotated by r */
     for (uint32_t t = 0; t < G->per; t++)
-        uf_union(G->parent, G->circle[0][t], G->circle[1][(r + G->per - t) % G->per]);
+        sq_uf_union(G->parent, G->circle[0][t], G->circle[1][(r + G->per - t) % G->per]);
     uint32_t nc = 0;
     for (uint32_t v = 0; v < G->nv; v++) G->cls[v] = SQ_NONE;
     for (uint32_t v = 0; v < G->nv; v++) {
-        uint32_t root = uf_find(G->parent, v);
+        uint32_t root = sq_uf_find(G->parent, v);
         if (G->cls[root] == SQ_NONE) G->cls[root] = nc++;
         G->cls[v] = G->cls[root];
     }

@@ -4,6 +4,7 @@
  * pair of sides, seed 6.3: "here we only glue a subset so as to yield a
  * disk topology mesh Q"). */
 #include "sq_domain_genus1.h"
+#include "sq_union_find.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -18,18 +19,6 @@ typedef struct enum_ctx {
     uint32_t *out, *glue;
 } enum_ctx;
 
-static uint32_t find(uint32_t *parent, uint32_t x)
-{
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-}
-
-static void unite(uint32_t *parent, uint32_t a, uint32_t b)
-{
-    a = find(parent, a), b = find(parent, b);
-    if (a != b) parent[a < b ? b : a] = a < b ? a : b;
-}
-
 /* A complete pairing: keep it if every corner class has four corners and
  * the pieces are connected. */
 static void consider(enum_ctx *c)
@@ -40,15 +29,15 @@ static void consider(enum_ctx *c)
     for (uint32_t p = 0; p < c->npieces; p++) pparent[p] = p;
     for (uint32_t i = 0; i < c->n; i++) {
         uint32_t j = c->partner[i];
-        unite(parent, i, c->next[j]);
-        unite(parent, c->next[i], j);
-        unite(pparent, c->piece_of[i], c->piece_of[j]);
+        sq_uf_union(parent, i, c->next[j]);
+        sq_uf_union(parent, c->next[i], j);
+        sq_uf_union(pparent, c->piece_of[i], c->piece_of[j]);
     }
-    for (uint32_t i = 0; i < c->n; i++) size[find(parent, i)]++;
+    for (uint32_t i = 0; i < c->n; i++) size[sq_uf_find(parent, i)]++;
     for (uint32_t i = 0; i < c->n; i++)
         if (size[i] != 0 && size[i] != 4) return;
     for (uint32_t p = 0; p < c->npieces; p++)
-        if (find(pparent, p) != 0) return;
+        if (sq_uf_find(pparent, p) != 0) return;
     if (c->count < c->cap) {
         if (c->out) memcpy(c->out + (size_t)c->count * c->n, c->partner, c->n * sizeof(uint32_t));
         if (c->glue) {
@@ -56,7 +45,7 @@ static void consider(enum_ctx *c)
             for (uint32_t i = 0; i < c->n && g == UINT32_MAX; i++) {
                 uint32_t j = c->partner[i];
                 if (c->piece_of[i] == 0 && c->piece_of[j] == 1 &&
-                    find(parent, i) != find(parent, c->next[i]))
+                    sq_uf_find(parent, i) != sq_uf_find(parent, c->next[i]))
                     g = i;
             }
             c->glue[c->count] = g;

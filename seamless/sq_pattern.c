@@ -1,6 +1,7 @@
 /* seamquad: side-pairing patterns (seed 6, 7; seamless-notes 1, 2, 6, 7).
  * See sq_pattern.h for the conventions. */
 #include "sq_pattern.h"
+#include "sq_union_find.h"
 
 #include <assert.h>
 #include <stdlib.h>
@@ -50,25 +51,6 @@ sq_status sq_pattern_copy(sq_pattern *dst, const sq_pattern *src, sq_error *err)
 
 /* ---- corner classes ---------------------------------------------------- */
 
-static uint32_t uf_find(uint32_t *parent, uint32_t x)
-{
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
-}
-
-static void uf_union(uint32_t *parent, uint32_t a, uint32_t b)
-{
-    a = uf_find(parent, a);
-    b = uf_find(parent, b);
-    if (a < b)
-        parent[b] = a;
-    else if (b < a)
-        parent[a] = b;
-}
-
 /* Fills class_of (k entries) with class ids numbered by first corner;
  * parent is scratch of k entries. Returns the number of classes. */
 static uint32_t classes_into(const sq_pattern *pat, uint32_t *parent, uint32_t *class_of)
@@ -81,12 +63,12 @@ static uint32_t classes_into(const sq_pattern *pat, uint32_t *parent, uint32_t *
         assert(j < k && pat->partner[j] == i);
         /* side i runs corner i -> i+1, side j runs corner j -> j+1, glued
          * reversed: the start of one is the end of the other. */
-        uf_union(parent, i, (j + 1) % k);
-        uf_union(parent, (i + 1) % k, j);
+        sq_uf_union(parent, i, (j + 1) % k);
+        sq_uf_union(parent, (i + 1) % k, j);
     }
     uint32_t n = 0;
     for (uint32_t i = 0; i < k; ++i) {
-        const uint32_t r = uf_find(parent, i);
+        const uint32_t r = sq_uf_find(parent, i);
         if (r == i)
             class_of[i] = n++;
         else
