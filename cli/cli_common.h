@@ -20,6 +20,8 @@ enum {
 int sq_cmd_check(int argc, char **argv);
 int sq_cmd_domain(int argc, char **argv);
 int sq_cmd_cones(int argc, char **argv);
+int sq_cmd_smooth(int argc, char **argv);
+int sq_cmd_subdiv(int argc, char **argv);
 
 /* Writes s as a JSON string literal (with quotes) to f. */
 void sq_json_string(FILE *f, const char *s);

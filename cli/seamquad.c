@@ -17,8 +17,8 @@ static const subcommand commands[] = {
     {"param", NULL, "seamless, locally injective parametrization of a mesh (planned)"},
     {"quantize", NULL, "optimize distortion, then quantize to an integer grid (planned)"},
     {"extract", NULL, "extract the closed pure-quad mesh of a parametrization (planned)"},
-    {"smooth", NULL, "smooth a quad mesh on the input surface with Ceres (planned)"},
-    {"subdiv", NULL, "Catmull-Clark limit surface; STEP and IGES B-spline export (planned)"},
+    {"smooth", sq_cmd_smooth, "smooth a quad mesh on the input surface with Ceres"},
+    {"subdiv", sq_cmd_subdiv, "Catmull-Clark limit surface; STEP and IGES B-spline export"},
     {"remesh", NULL, "the whole pipeline: triangle mesh in, quad mesh out (planned)"},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])

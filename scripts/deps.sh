@@ -7,6 +7,12 @@ SQ_DEBIAN_PACKAGES=(
   libsuitesparse-dev  # CHOLMOD and UMFPACK sparse solvers
   libopenmesh-dev     # cross-check of our mesh readers (tests only)
   libcmocka-dev       # unit tests
+  libceres-dev        # nonlinear least squares for quad smoothing (stages/adapter_ceres.cpp)
+  libosd-dev          # OpenSubdiv: Catmull-Clark patches and limit evaluation (stages/adapter_opensubdiv.cpp)
+  libocct-data-exchange-dev       # OpenCASCADE STEP/IGES readers: CAD import check (tests only)
+  libocct-modeling-algorithms-dev # OpenCASCADE BRepCheck_Analyzer (tests only)
+  libocct-modeling-data-dev       # OpenCASCADE B-rep and B-spline geometry (tests only)
+  libocct-foundation-dev          # OpenCASCADE kernel (tests only)
 )
 
 sq_missing_packages() {

@@ -1,0 +1,365 @@
+/* seamquad: quad mesh smoothing on a triangle surface (docs/smooth.md).
+ *
+ * Each outer iteration: every vertex gets a tangent frame at its current
+ * position on the surface (the normal of the surface triangle it lies on)
+ * and two unknowns, its offset in that plane in units of its mean incident
+ * edge length; Ceres (sq_ceres_adapter.h) minimizes the objective of
+ * sq_smooth_energy.c under the no-fold constraint; the result is projected
+ * back onto the surface (closest point, sq_closest_point.h) and accepted
+ * only if no quad folds there and (smoothing) the energy did not grow;
+ * otherwise the step is halved, up to MAX_BACKTRACK times, then rejected. */
+#include <float.h>
+#include <stdio.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sq_ceres_adapter.h"
+#include "sq_closest_point.h"
+#include "sq_smooth_internal.h"
+
+#define MAX_BACKTRACK 8
+
+void sq_smooth_options_default(sq_smooth_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->iterations = 10;
+    o->solver_iterations = 20;
+    o->untangle_iterations = 30;
+    o->angle_weight = 1.0;
+    o->length_weight = 0.5;
+    o->untangle_weight = 4.0;
+    o->barrier_weight = 0.1;
+    o->fold_margin = 0.01;
+    o->untangle_target = 1e-3;
+    o->function_tolerance = 1e-6;
+    o->gradient_tolerance = 1e-10;
+    o->parameter_tolerance = 1e-8;
+    o->num_threads = 1;
+}
+
+typedef struct smoother {
+    const sq_smooth_options *opt;
+    sq_smooth_stats *stats;
+    sq_cp_tree tree;
+    const double *tri_normal;   /* 3*snt unit normals                       */
+    uint32_t nv, nq;
+    const uint32_t *quads;
+    double *pos;                /* 3*nv, caller's array: the accepted state  */
+    uint32_t *vtri;             /* nv: surface triangle of each vertex       */
+    double *frame, *h, *ref_normal, *threshold, *x, *cand, *margin;
+    uint32_t *cand_tri, *con_quad, *res_off, *res_param, *res_dim;
+    unsigned char *untangle;
+    sq_smooth_ctx ctx;
+} smoother;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void set_frames(smoother *s)
+{
+    for (uint32_t v = 0; v < s->nv; v++) {
+        double *f = s->frame + 9 * (size_t)v;
+        const double *n = s->tri_normal + 3 * (size_t)s->vtri[v];
+        /* t1: n x (the axis least aligned with n), t2 = n x t1 */
+        int ax = fabs(n[0]) <= fabs(n[1]) ? (fabs(n[0]) <= fabs(n[2]) ? 0 : 2) : (fabs(n[1]) <= fabs(n[2]) ? 1 : 2);
+        double a[3] = {0, 0, 0};
+        a[ax] = 1.0;
+        double t1[3] = {n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0]};
+        double l = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+        for (int k = 0; k < 3; k++) t1[k] /= l;
+        double t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+        memcpy(f, t1, sizeof t1);
+        memcpy(f + 3, t2, sizeof t2);
+        memcpy(f + 6, n, 3 * sizeof(double));
+    }
+    /* h: mean length of the incident edges (every edge is seen from both quads) */
+    memset(s->h, 0, s->nv * sizeof(double));
+    uint32_t *cnt = s->cand_tri; /* scratch */
+    memset(cnt, 0, s->nv * sizeof(uint32_t));
+    double total = 0.0;
+    for (uint32_t q = 0; q < s->nq; q++)
+        for (int k = 0; k < 4; k++) {
+            uint32_t a = s->quads[4 * (size_t)q + k], b = s->quads[4 * (size_t)q + (k + 1) % 4];
+            const double *pa = s->pos + 3 * (size_t)a, *pb = s->pos + 3 * (size_t)b;
+            double d = sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                            (pa[2] - pb[2]) * (pa[2] - pb[2]));
+            s->h[a] += d, s->h[b] += d;
+            cnt[a]++, cnt[b]++;
+            total += d;
+        }
+    double mean = total / (4.0 * s->nq);
+    for (uint32_t v = 0; v < s->nv; v++) {
+        s->h[v] = cnt[v] ? s->h[v] / cnt[v] : mean;
+        if (!(s->h[v] > 0.0)) s->h[v] = mean > 0.0 ? mean : 1.0;
+    }
+}
+
+static void compute_margins(smoother *s, const double *pos)
+{
+    for (uint32_t q = 0; q < s->nq; q++) {
+        const uint32_t *f = s->quads + 4 * (size_t)q;
+        s->margin[q] = sq_quad_fold_margin(pos + 3 * (size_t)f[0], pos + 3 * (size_t)f[1],
+                                           pos + 3 * (size_t)f[2], pos + 3 * (size_t)f[3]);
+    }
+}
+
+/* One outer step. Returns 1 accepted, 0 rejected (would fold or not
+ * decrease), 2 no progress (Ceres took no step), or -1 with err set. */
+static int outer_step(smoother *s, int smoothing, sq_error *err)
+{
+    const sq_smooth_options *o = s->opt;
+    uint32_t nres = s->nq, ncon = 0;
+    s->res_off[0] = 0;
+    for (uint32_t q = 0; q < s->nq; q++) {
+        for (int k = 0; k < 4; k++) s->res_param[4 * (size_t)q + k] = s->quads[4 * (size_t)q + k];
+        s->res_off[q + 1] = 4 * (q + 1);
+        s->res_dim[q] = sq_smooth_residual_count(&s->ctx, q);
+        if (s->threshold[q] > -INFINITY) s->con_quad[ncon++] = q;
+    }
+    /* constraint blocks reuse res_param (same four vertices as the quad) */
+    uint32_t *con_off = malloc((ncon + 1) * sizeof(uint32_t));
+    uint32_t *con_param = malloc(4 * (size_t)(ncon ? ncon : 1) * sizeof(uint32_t));
+    if (!con_off || !con_param) {
+        free(con_off), free(con_param);
+        sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory");
+        return -1;
+    }
+    con_off[0] = 0;
+    for (uint32_t c = 0; c < ncon; c++) {
+        memcpy(con_param + 4 * (size_t)c, s->quads + 4 * (size_t)s->con_quad[c], 4 * sizeof(uint32_t));
+        con_off[c + 1] = 4 * (c + 1);
+    }
+    memset(s->x, 0, 2 * (size_t)s->nv * sizeof(double));
+    sq_nlls_problem p = {s->nv, 2, s->x, nres, s->res_off, s->res_param, s->res_dim,
+                         sq_smooth_residual_cb, ncon, con_off, con_param, sq_smooth_feasible_cb, &s->ctx};
+    sq_nlls_options no;
+    sq_nlls_options_default(&no);
+    no.max_iterations = o->solver_iterations;
+    no.function_tolerance = o->function_tolerance;
+    no.gradient_tolerance = o->gradient_tolerance;
+    no.parameter_tolerance = o->parameter_tolerance;
+    no.num_threads = o->num_threads;
+    sq_nlls_summary sum;
+    sq_status st = sq_nlls_solve(&p, &no, &sum, err);
+    free(con_off), free(con_param);
+    if (st != SQ_OK) return -1;
+    s->stats->solver_iterations += sum.iterations;
+    s->stats->solver_rejected += sum.unsuccessful_steps;
+    memcpy(s->stats->linear_solver, sum.linear_solver, sizeof sum.linear_solver);
+    if (sum.successful_steps == 0) return 2;
+
+    double e_old = smoothing ? sq_smooth_energy(&s->ctx, s->pos) : 0.0;
+    double lambda = 1.0;
+    for (int bt = 0; bt <= MAX_BACKTRACK; bt++, lambda *= 0.5) {
+        for (uint32_t v = 0; v < s->nv; v++) {
+            const double *b = s->ctx.base + 3 * (size_t)v, *f = s->frame + 9 * (size_t)v;
+            double y[3];
+            for (int k = 0; k < 3; k++)
+                y[k] = b[k] + lambda * s->h[v] * (s->x[2 * v] * f[k] + s->x[2 * v + 1] * f[3 + k]);
+            sq_cp_hit hit;
+            sq_cp_tree_query(&s->tree, y, &hit);
+            memcpy(s->cand + 3 * (size_t)v, hit.point, sizeof hit.point);
+            s->cand_tri[v] = hit.tri;
+        }
+        int ok = 1;
+        for (uint32_t q = 0; q < s->nq && ok; q++) {
+            if (s->threshold[q] == -INFINITY) continue;
+            const uint32_t *f = s->quads + 4 * (size_t)q;
+            double m = sq_quad_fold_margin(s->cand + 3 * (size_t)f[0], s->cand + 3 * (size_t)f[1],
+                                           s->cand + 3 * (size_t)f[2], s->cand + 3 * (size_t)f[3]);
+            if (!(m >= s->threshold[q])) ok = 0;
+        }
+        if (ok && smoothing && !(sq_smooth_energy(&s->ctx, s->cand) <= e_old)) ok = 0;
+        if (ok) {
+            memcpy(s->pos, s->cand, 3 * (size_t)s->nv * sizeof(double));
+            memcpy(s->vtri, s->cand_tri, s->nv * sizeof(uint32_t));
+            return 1;
+        }
+        s->stats->backtracks++;
+    }
+    s->stats->steps_rejected++;
+    return 0;
+}
+
+static double max_dist_rel(const sq_cp_tree *t, uint32_t nv, const double *pos, double diag)
+{
+    double worst = 0.0;
+    for (uint32_t v = 0; v < nv; v++) {
+        sq_cp_hit hit;
+        sq_cp_tree_query(t, pos + 3 * (size_t)v, &hit);
+        if (hit.dist2 > worst) worst = hit.dist2;
+    }
+    return sqrt(worst) / diag;
+}
+
+sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const uint32_t *stri,
+                          uint32_t nv, double *pos, uint32_t nq, const uint32_t *quads,
+                          const sq_smooth_options *opt, sq_smooth_stats *stats, sq_error *err)
+{
+    sq_smooth_options defaults;
+    if (!opt) sq_smooth_options_default(&defaults), opt = &defaults;
+    memset(stats, 0, sizeof *stats);
+    double t0 = now_s();
+    if (nq == 0 || nv == 0) return sq_error_set(err, SQ_ERR_EMPTY, "smooth: the quad mesh is empty");
+    for (size_t i = 0; i < 4 * (size_t)nq; i++)
+        if (quads[i] >= nv)
+            return sq_error_set(err, SQ_ERR_INDEX, "smooth: quad %zu uses vertex %u of %u", i / 4, quads[i], nv);
+    if (opt->iterations < 0 || opt->solver_iterations < 1 || opt->untangle_iterations < 0)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "smooth: iteration counts must be >= 0 (solver >= 1)");
+
+    smoother s;
+    memset(&s, 0, sizeof s);
+    double diag = 0.0;
+    s.opt = opt, s.stats = stats, s.nv = nv, s.nq = nq, s.quads = quads, s.pos = pos;
+    sq_status st = sq_cp_tree_build(snv, spos, snt, stri, &s.tree, err);
+    if (st != SQ_OK) return st;
+    double *tri_normal = malloc(3 * (size_t)snt * sizeof(double));
+    double *base = malloc(3 * (size_t)nv * sizeof(double));
+    s.vtri = malloc(nv * sizeof(uint32_t));
+    s.frame = malloc(9 * (size_t)nv * sizeof(double));
+    s.h = malloc(nv * sizeof(double));
+    s.ref_normal = malloc(3 * (size_t)nq * sizeof(double));
+    s.threshold = malloc(nq * sizeof(double));
+    s.margin = malloc(nq * sizeof(double));
+    s.x = malloc(2 * (size_t)nv * sizeof(double));
+    s.cand = malloc(3 * (size_t)nv * sizeof(double));
+    s.cand_tri = malloc(nv * sizeof(uint32_t));
+    s.con_quad = malloc(nq * sizeof(uint32_t));
+    s.res_off = malloc((nq + 1) * sizeof(uint32_t));
+    s.res_param = malloc(4 * (size_t)nq * sizeof(uint32_t));
+    s.res_dim = malloc(nq * sizeof(uint32_t));
+    s.untangle = calloc(nq, 1);
+    if (!tri_normal || !base || !s.vtri || !s.frame || !s.h || !s.ref_normal || !s.threshold || !s.margin ||
+        !s.x || !s.cand || !s.cand_tri || !s.con_quad || !s.res_off || !s.res_param || !s.res_dim ||
+        !s.untangle) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory for %u vertices", nv);
+        goto done;
+    }
+    s.tri_normal = tri_normal;
+    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+    for (uint32_t v = 0; v < snv; v++)
+        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], spos[3 * (size_t)v + k]), hi[k] = fmax(hi[k], spos[3 * (size_t)v + k]);
+    diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    for (uint32_t t = 0; t < snt; t++) {
+        const double *a = spos + 3 * (size_t)stri[3 * (size_t)t], *b = spos + 3 * (size_t)stri[3 * (size_t)t + 1],
+                     *c = spos + 3 * (size_t)stri[3 * (size_t)t + 2];
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(l > 0.0)) { /* cannot happen for a validated surface: no collinear triangle */
+            n[0] = 0, n[1] = 0, n[2] = 1, l = 1;
+        }
+        for (int k = 0; k < 3; k++) tri_normal[3 * (size_t)t + k] = n[k] / l;
+    }
+    s.ctx = (sq_smooth_ctx){nv, nq, quads, base, s.frame, s.h, s.ref_normal, s.untangle, s.threshold,
+                            s.con_quad, opt->angle_weight, opt->length_weight, opt->untangle_weight,
+                            opt->barrier_weight, 0};
+
+    sq_quad_quality_compute(pos, nq, quads, &stats->before);
+    stats->dist_before_rel = max_dist_rel(&s.tree, nv, pos, diag);
+    /* 1. project every vertex onto the surface */
+    for (uint32_t v = 0; v < nv; v++) {
+        sq_cp_hit hit;
+        sq_cp_tree_query(&s.tree, pos + 3 * (size_t)v, &hit);
+        memcpy(pos + 3 * (size_t)v, hit.point, sizeof hit.point);
+        s.vtri[v] = hit.tri;
+    }
+    sq_quad_quality_compute(pos, nq, quads, &stats->projected);
+
+    /* 2. untangle: quads with fold margin < target get the untangling terms and
+     * no constraint; every other quad must keep its margin >= min(fold_margin, margin) */
+    for (;;) {
+        compute_margins(&s, pos);
+        uint32_t ntarget = 0;
+        for (uint32_t q = 0; q < nq; q++) {
+            int target = !(s.margin[q] >= opt->untangle_target);
+            s.untangle[q] = (unsigned char)target;
+            ntarget += (uint32_t)target;
+            s.threshold[q] = target ? -INFINITY : fmin(opt->fold_margin, 0.5 * s.margin[q]);
+        }
+        if (opt->progress) opt->progress(opt->progress_user, "untangle", stats->untangle_iterations, 0.0, ntarget);
+        if (ntarget == 0) break;
+        if (stats->untangle_iterations >= opt->untangle_iterations) {
+            uint32_t first = 0;
+            while (first < nq && !s.untangle[first]) first++;
+            st = sq_error_set(err, SQ_ERR_SOLVER,
+                              "smooth: untangling left %u quads folded or nearly folded (fold margin < %g) "
+                              "after %d iterations; first: quad %u (0-based)",
+                              ntarget, opt->untangle_target, stats->untangle_iterations, first);
+            goto done;
+        }
+        memcpy(base, pos, 3 * (size_t)nv * sizeof(double));
+        set_frames(&s);
+        for (uint32_t q = 0; q < nq; q++) {
+            if (!s.untangle[q]) continue;
+            double *n = s.ref_normal + 3 * (size_t)q;
+            n[0] = n[1] = n[2] = 0.0;
+            for (int k = 0; k < 4; k++)
+                for (int j = 0; j < 3; j++) n[j] += s.frame[9 * (size_t)quads[4 * (size_t)q + k] + 6 + j];
+            double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int j = 0; j < 3; j++) n[j] = l > 0.0 ? n[j] / l : (j == 2);
+        }
+        int r = outer_step(&s, 0, err);
+        stats->untangle_iterations++;
+        if (r < 0) {
+            st = err ? err->code : SQ_ERR_SOLVER;
+            goto done;
+        }
+    }
+    sq_quad_quality_compute(pos, nq, quads, &stats->untangled);
+
+    /* 3. smooth: the fold thresholds are fixed from here on */
+    memset(s.untangle, 0, nq);
+    compute_margins(&s, pos);
+    for (uint32_t q = 0; q < nq; q++) s.threshold[q] = fmin(opt->fold_margin, 0.5 * s.margin[q]);
+    stats->energy_before = sq_smooth_energy(&s.ctx, pos);
+    double energy = stats->energy_before;
+    snprintf(stats->stop_reason, sizeof stats->stop_reason, "iteration limit (%d)", opt->iterations);
+    for (int it = 0; it < opt->iterations; it++) {
+        memcpy(base, pos, 3 * (size_t)nv * sizeof(double));
+        set_frames(&s);
+        int r = outer_step(&s, 1, err);
+        if (r < 0) {
+            st = err ? err->code : SQ_ERR_SOLVER;
+            goto done;
+        }
+        if (r == 2) {
+            snprintf(stats->stop_reason, sizeof stats->stop_reason, "converged: the solver found no better step");
+            break;
+        }
+        if (r == 0) {
+            snprintf(stats->stop_reason, sizeof stats->stop_reason,
+                     "step rejected: after re-projection it would fold a quad or raise the energy, "
+                     "even halved %d times", MAX_BACKTRACK);
+            break;
+        }
+        stats->iterations++;
+        double e = sq_smooth_energy(&s.ctx, pos);
+        if (opt->progress) opt->progress(opt->progress_user, "smooth", stats->iterations, e, 0);
+        int small = energy - e <= opt->function_tolerance * energy;
+        energy = e;
+        if (small) {
+            snprintf(stats->stop_reason, sizeof stats->stop_reason,
+                     "converged: relative energy decrease below %g", opt->function_tolerance);
+            break;
+        }
+    }
+    stats->energy_after = energy;
+    st = SQ_OK;
+done:
+    sq_quad_quality_compute(pos, nq, quads, &stats->after);
+    stats->dist_after_rel = diag > 0.0 ? max_dist_rel(&s.tree, nv, pos, diag) : 0.0;
+    stats->fold_rejections = s.ctx.fold_rejections;
+    stats->seconds = now_s() - t0;
+    sq_cp_tree_free(&s.tree);
+    free(tri_normal), free(base), free(s.vtri), free(s.frame), free(s.h), free(s.ref_normal);
+    free(s.threshold), free(s.margin), free(s.x), free(s.cand), free(s.cand_tri), free(s.con_quad);
+    free(s.res_off), free(s.res_param), free(s.res_dim), free(s.untangle);
+    return st;
+}

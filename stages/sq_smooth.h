@@ -1,0 +1,91 @@
+/* seamquad: quad mesh smoothing on a triangle surface with Ceres (see
+ * docs/smooth.md).
+ *
+ * Moves the vertices of a closed quad mesh so that corner angles approach 90
+ * degrees and edge lengths become locally uniform, keeping every vertex on
+ * the input triangle surface (each vertex ends as a closest point: a
+ * barycentric combination of one surface triangle's corners) and the
+ * connectivity unchanged. Folded input quads are untangled first; after
+ * that no accepted step folds a quad (robust fold test, sq_quad_fold_margin). */
+#ifndef SQ_SMOOTH_H
+#define SQ_SMOOTH_H
+
+#include <stdint.h>
+
+#include "sq_error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Quality of a quad mesh, with the referee's formulas (check_quad.py [6]). */
+typedef struct sq_quad_quality {
+    uint32_t nq;
+    double angle_min_deg, angle_max_deg;
+    double angle_mean_dev_deg;  /* mean |corner angle - 90| over all corners  */
+    double sjac_min, sjac_mean; /* scaled Jacobian per quad (min over corners) */
+    double edge_ratio_mean, edge_ratio_max; /* longest / shortest edge of a quad */
+    uint32_t folded;            /* both triangulations fold by > 90 degrees    */
+    double fold_margin_min;     /* min over quads of sq_quad_fold_margin       */
+} sq_quad_quality;
+
+/* Fold margin of quad (p0, p1, p2, p3): the larger, over its two
+ * triangulations (02 and 13), of the cosine of the angle between the two
+ * triangle normals; -1 when a triangle is degenerate. The referee calls a
+ * quad folded when both cosines are negative, i.e. when this is < 0. */
+double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2, const double *p3);
+
+void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads,
+                             sq_quad_quality *q);
+
+typedef struct sq_smooth_options {
+    int iterations;          /* outer iterations: optimize, re-project (10)       */
+    int solver_iterations;   /* Levenberg-Marquardt iterations per outer one (20) */
+    int untangle_iterations; /* outer iterations allowed for untangling (30)      */
+    double angle_weight;     /* weight of the corner-angle residuals (1)          */
+    double length_weight;    /* weight of the edge-length residuals (0.5)         */
+    double untangle_weight;  /* weight of the untangling residuals (4)            */
+    double barrier_weight;   /* weight of the fold-margin log barrier (0.1)       */
+    double fold_margin;      /* keep every quad's fold margin >= min(this, half   */
+                             /* its margin after untangling) (0.01)               */
+    double untangle_target;  /* untangle until every fold margin >= this (1e-3)   */
+    double function_tolerance, gradient_tolerance, parameter_tolerance; /* Ceres  */
+    int num_threads;         /* Ceres threads (1)                                 */
+    /* optional progress report (the library never prints) */
+    void (*progress)(void *user, const char *phase, int iteration, double energy, uint32_t folded);
+    void *progress_user;
+} sq_smooth_options;
+
+typedef struct sq_smooth_stats {
+    sq_quad_quality before;      /* the input as given                         */
+    sq_quad_quality projected;   /* after projecting it onto the surface       */
+    sq_quad_quality untangled;   /* after untangling                           */
+    sq_quad_quality after;       /* the result                                 */
+    double dist_before_rel;      /* max vertex-to-surface distance / diagonal  */
+    double dist_after_rel;
+    int untangle_iterations, iterations;
+    long solver_iterations;      /* Ceres iterations, all outer iterations      */
+    long solver_rejected;        /* Ceres steps rejected (any reason)           */
+    long fold_rejections;        /* trial states that would fold a quad         */
+    int backtracks;              /* halvings of a step after re-projection      */
+    int steps_rejected;          /* outer steps rejected whole (would fold)     */
+    double energy_before, energy_after; /* smoothing energy (sum of squares)   */
+    double seconds;
+    char linear_solver[48];
+    char stop_reason[160];
+} sq_smooth_stats;
+
+void sq_smooth_options_default(sq_smooth_options *o);
+
+/* Smooths the quad mesh (nv vertices pos: 3*nv, updated in place; nq quads:
+ * 4*nq indices, closed and validated by the caller) on the triangle surface
+ * (snv vertices spos, snt triangles stri). On failure pos keeps the last
+ * accepted state. SQ_ERR_SOLVER when untangling leaves a folded quad. */
+sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const uint32_t *stri,
+                          uint32_t nv, double *pos, uint32_t nq, const uint32_t *quads,
+                          const sq_smooth_options *opt, sq_smooth_stats *stats, sq_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

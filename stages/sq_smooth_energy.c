@@ -1,0 +1,119 @@
+/* seamquad: the smoothing objective (docs/smooth.md): per quad, the cosines
+ * of its four corner angles (0 at 90 degrees), its four edge lengths relative
+ * to their mean (0 when equal), and for quads being untangled a hinge on the
+ * alignment of each of its four triangles with the surface normal; and a
+ * log barrier keeping its fold margin above its threshold. */
+#include <math.h>
+#include <stddef.h>
+
+#include "sq_smooth_internal.h"
+
+#define UNTANGLE_COS 0.2 /* untangling pushes triangle normals within ~78 deg of the surface's */
+#define BARRIER_START 0.5 /* fold margin (cosine) below which the barrier acts */
+
+static void sub3(const double *a, const double *b, double *o) { o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2]; }
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void cross3(const double *a, const double *b, double *o)
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+uint32_t sq_smooth_residual_count(const sq_smooth_ctx *c, uint32_t q)
+{
+    return c->untangle && c->untangle[q] ? 13 : 9;
+}
+
+/* Log barrier on the fold margin m above the quad's threshold t: 0 for
+ * m >= BARRIER_START, growing without bound as m falls to t. It lets the
+ * solver see the no-fold constraint coming instead of only hitting it. */
+static int barrier_term(double m, double t, double *r)
+{
+    if (t == -INFINITY || m >= BARRIER_START) {
+        *r = 0.0;
+        return 1;
+    }
+    if (!(m > t)) return 0;
+    *r = -log((m - t) / (BARRIER_START - t));
+    return 1;
+}
+
+/* hinge: how far triangle (a, b, d)'s normal is from facing along n */
+static double untangle_term(const double *a, const double *b, const double *d, const double *n)
+{
+    double u[3], v[3], t[3];
+    sub3(b, a, u), sub3(d, a, v), cross3(u, v, t);
+    double len = sqrt(dot3(t, t));
+    double cosv = len > 0.0 ? dot3(t, n) / len : 0.0;
+    return cosv < UNTANGLE_COS ? UNTANGLE_COS - cosv : 0.0;
+}
+
+int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *const x[4], double *r)
+{
+    double e[4][3], len[4], mean = 0.0;
+    for (int k = 0; k < 4; k++) {
+        sub3(x[(k + 1) % 4], x[k], e[k]);
+        len[k] = sqrt(dot3(e[k], e[k]));
+        if (!(len[k] > 0.0)) return 0;
+        mean += 0.25 * len[k];
+    }
+    for (int k = 0; k < 4; k++) {
+        const double *a = e[k], *b = e[(k + 3) % 4]; /* corner k: a and -b */
+        r[k] = c->wa * (-dot3(a, b) / (len[k] * len[(k + 3) % 4]));
+        r[4 + k] = c->wl * (len[k] - mean) / mean;
+    }
+    double b;
+    if (!barrier_term(sq_quad_fold_margin(x[0], x[1], x[2], x[3]), c->threshold[q], &b)) return 0;
+    r[8] = c->wb * b;
+    if (c->untangle && c->untangle[q]) {
+        const double *n = c->ref_normal + 3 * (size_t)q;
+        r[9] = c->wu * untangle_term(x[0], x[1], x[2], n);
+        r[10] = c->wu * untangle_term(x[0], x[2], x[3], n);
+        r[11] = c->wu * untangle_term(x[0], x[1], x[3], n);
+        r[12] = c->wu * untangle_term(x[1], x[2], x[3], n);
+    }
+    return 1;
+}
+
+double sq_smooth_energy(const sq_smooth_ctx *c, const double *pos)
+{
+    double sum = 0.0, r[SQ_SMOOTH_MAX_RES];
+    for (uint32_t q = 0; q < c->nq; q++) {
+        const double *x[4];
+        for (int k = 0; k < 4; k++) x[k] = pos + 3 * (size_t)c->quads[4 * (size_t)q + k];
+        if (!sq_smooth_quad_residuals(c, q, x, r)) return INFINITY;
+        for (uint32_t i = 0; i < sq_smooth_residual_count(c, q); i++) sum += r[i] * r[i];
+    }
+    return sum;
+}
+
+static void tangent_position(const sq_smooth_ctx *c, uint32_t v, const double *ab, double *x)
+{
+    const double *p = c->base + 3 * (size_t)v, *f = c->frame + 9 * (size_t)v;
+    double s = c->h[v];
+    for (int k = 0; k < 3; k++) x[k] = p[k] + s * (ab[0] * f[k] + ab[1] * f[3 + k]);
+}
+
+int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, double *r)
+{
+    const sq_smooth_ctx *c = user;
+    double xs[4][3];
+    const double *x[4];
+    for (int k = 0; k < 4; k++) {
+        tangent_position(c, c->quads[4 * (size_t)q + k], param[k], xs[k]);
+        x[k] = xs[k];
+    }
+    return sq_smooth_quad_residuals(c, q, x, r);
+}
+
+int sq_smooth_feasible_cb(void *user, uint32_t con, const double *const *param)
+{
+    sq_smooth_ctx *c = user;
+    uint32_t q = c->con_quad[con];
+    double xs[4][3];
+    for (int k = 0; k < 4; k++) tangent_position(c, c->quads[4 * (size_t)q + k], param[k], xs[k]);
+    if (sq_quad_fold_margin(xs[0], xs[1], xs[2], xs[3]) >= c->threshold[q]) return 1;
+    c->fold_rejections++;
+    return 0;
+}

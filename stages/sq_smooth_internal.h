@@ -1,0 +1,40 @@
+/* seamquad: internals of the quad smoother shared by sq_smooth*.c. */
+#ifndef SQ_SMOOTH_INTERNAL_H
+#define SQ_SMOOTH_INTERNAL_H
+
+#include <stdint.h>
+
+#include "sq_smooth.h"
+
+#define SQ_SMOOTH_MAX_RES 13 /* 4 angle + 4 length + 1 barrier + 4 untangling */
+
+typedef struct sq_smooth_ctx {
+    uint32_t nv, nq;
+    const uint32_t *quads;   /* 4*nq                                           */
+    const double *base;      /* 3*nv: vertex positions on the surface          */
+    const double *frame;     /* 9*nv: tangent t1, tangent t2, normal n          */
+    const double *h;         /* nv: local length scale (mean incident edge)     */
+    const double *ref_normal;/* 3*nq: surface normal for the untangling terms   */
+    const unsigned char *untangle; /* nq: 1 = the quad gets untangling terms    */
+    const double *threshold; /* nq: feasible iff fold margin >= threshold       */
+    const uint32_t *con_quad;/* constraint block -> quad                        */
+    double wa, wl, wu, wb;
+    long fold_rejections;    /* counted by the feasibility callback             */
+} sq_smooth_ctx;
+
+/* Number of residuals of quad q (9, or 13 with untangling terms). */
+uint32_t sq_smooth_residual_count(const sq_smooth_ctx *c, uint32_t q);
+
+/* Residuals of quad q at corner positions x[0..3] (3D). 0 when undefined
+ * (a zero-length edge). */
+int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *const x[4], double *r);
+
+/* Sum of squared residuals of all quads at positions pos (3*nv). */
+double sq_smooth_energy(const sq_smooth_ctx *c, const double *pos);
+
+/* Callbacks for sq_nlls_solve: parameter block i is vertex i's tangent
+ * offset (a, b): position base + h (a t1 + b t2). */
+int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, double *r);
+int sq_smooth_feasible_cb(void *user, uint32_t con, const double *const *param);
+
+#endif

@@ -1,0 +1,87 @@
+/* seamquad: quad quality measures and the fold margin (same formulas as the
+ * referee tools/check_quad.py, sections [3] and [6]). */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "sq_smooth.h"
+
+static void sub3(const double *a, const double *b, double *o) { o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2]; }
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void cross3(const double *a, const double *b, double *o)
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double cos_normals(const double *n, const double *m)
+{
+    double a = sqrt(dot3(n, n)), b = sqrt(dot3(m, m));
+    if (!(a > 0.0) || !(b > 0.0)) return -1.0;
+    return dot3(n, m) / (a * b);
+}
+
+double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2, const double *p3)
+{
+    double e0[3], e1[3], d02[3], d03[3], d13[3], n012[3], n023[3], n013[3], n123[3];
+    sub3(p1, p0, e0), sub3(p2, p1, e1), sub3(p2, p0, d02), sub3(p3, p0, d03), sub3(p3, p1, d13);
+    cross3(e0, d02, n012), cross3(d02, d03, n023), cross3(e0, d03, n013), cross3(e1, d13, n123);
+    double c1 = cos_normals(n012, n023), c2 = cos_normals(n013, n123);
+    return c1 > c2 ? c1 : c2;
+}
+
+void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads, sq_quad_quality *q)
+{
+    memset(q, 0, sizeof *q);
+    q->nq = nq;
+    q->angle_min_deg = 180.0, q->angle_max_deg = 0.0;
+    q->sjac_min = DBL_MAX, q->edge_ratio_max = 0.0, q->fold_margin_min = DBL_MAX;
+    double sum_dev = 0.0, sum_sj = 0.0, sum_er = 0.0;
+    uint32_t measured = 0;
+    for (uint32_t f = 0; f < nq; f++) {
+        const double *P[4];
+        for (int k = 0; k < 4; k++) P[k] = pos + 3 * (size_t)quads[4 * (size_t)f + k];
+        double m = sq_quad_fold_margin(P[0], P[1], P[2], P[3]);
+        if (m < q->fold_margin_min) q->fold_margin_min = m;
+        double e0[3], e1[3], d02[3], d03[3], d13[3], n012[3], n023[3], n013[3], n123[3];
+        sub3(P[1], P[0], e0), sub3(P[2], P[1], e1), sub3(P[2], P[0], d02), sub3(P[3], P[0], d03),
+            sub3(P[3], P[1], d13);
+        cross3(e0, d02, n012), cross3(d02, d03, n023), cross3(e0, d03, n013), cross3(e1, d13, n123);
+        if (dot3(n012, n023) < 0.0 && dot3(n013, n123) < 0.0) q->folded++;
+        double E[4][3], L[4];
+        for (int k = 0; k < 4; k++) {
+            sub3(P[(k + 1) % 4], P[k], E[k]);
+            L[k] = sqrt(dot3(E[k], E[k]));
+        }
+        double lmin = fmin(fmin(L[0], L[1]), fmin(L[2], L[3]));
+        double lmax = fmax(fmax(L[0], L[1]), fmax(L[2], L[3]));
+        if (!(lmin > 0.0)) continue;
+        double nvec[3];
+        cross3(d02, d13, nvec);
+        double nn = sqrt(dot3(nvec, nvec)), qsj = DBL_MAX;
+        for (int k = 0; k < 4; k++) {
+            const double *u = E[k], *w = E[(k + 3) % 4];
+            double c[3];
+            cross3(u, w, c);
+            c[0] = -c[0], c[1] = -c[1], c[2] = -c[2];
+            double ang = atan2(sqrt(dot3(c, c)), -dot3(u, w)) * (180.0 / 3.14159265358979323846);
+            if (ang < q->angle_min_deg) q->angle_min_deg = ang;
+            if (ang > q->angle_max_deg) q->angle_max_deg = ang;
+            sum_dev += fabs(ang - 90.0);
+            double j = nn > 0.0 ? dot3(c, nvec) / (L[k] * L[(k + 3) % 4] * nn) : 0.0;
+            if (j < qsj) qsj = j;
+        }
+        sum_sj += qsj;
+        if (qsj < q->sjac_min) q->sjac_min = qsj;
+        double er = lmax / lmin;
+        sum_er += er;
+        if (er > q->edge_ratio_max) q->edge_ratio_max = er;
+        measured++;
+    }
+    if (measured) {
+        q->angle_mean_dev_deg = sum_dev / (4.0 * measured);
+        q->sjac_mean = sum_sj / measured;
+        q->edge_ratio_mean = sum_er / measured;
+    }
+}

@@ -1,0 +1,257 @@
+/* Tests of quad smoothing (stages/sq_smooth.h) and its closest-point BVH
+ * (stages/sq_closest_point.h) on the shared meshes.
+ *
+ * CI runs a bounded sample (a few meshes, few iterations); SQ_LONG=1 runs
+ * every input of docs/smooth.md with the default iteration count. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "sq_closest_point.h"
+#include "sq_io.h"
+#include "sq_mesh.h"
+#include "sq_smooth.h"
+
+static const char *shared_dir(void)
+{
+    const char *d = getenv("SQ_SHARED_DIR");
+    return d && *d ? d : SQ_SHARED_DIR;
+}
+
+static int long_mode(void)
+{
+    const char *l = getenv("SQ_LONG");
+    return l && *l && strcmp(l, "0");
+}
+
+static void load(const char *rel, sq_soup *s, unsigned flags)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/data/%s", shared_dir(), rel);
+    sq_error err;
+    sq_mesh m;
+    memset(s, 0, sizeof *s);
+    sq_status st = sq_read_mesh(path, s, &err);
+    if (st != SQ_OK) fail_msg("%s: %s", path, err.msg);
+    st = sq_mesh_from_soup(s, flags, &m, &err);
+    if (st != SQ_OK) fail_msg("%s: %s", path, err.msg);
+    sq_mesh_free(&m);
+}
+
+static double diag_of(const sq_soup *s)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t v = 0; v < s->nv; v++)
+        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], s->pos[3 * v + k]), hi[k] = fmax(hi[k], s->pos[3 * v + k]);
+    return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/* ---- closest point: the BVH agrees exactly with a brute-force scan ---- */
+static void test_closest_point_matches_brute_force(void **state)
+{
+    (void)state;
+    sq_soup s;
+    load("libigl/bunny.off", &s, 0);
+    sq_cp_tree t;
+    sq_error err;
+    assert_int_equal(sq_cp_tree_build(s.nv, s.pos, s.nf, s.face_idx, &t, &err), SQ_OK);
+    double d = diag_of(&s);
+    uint64_t rng = 12345;
+    for (int i = 0; i < 300; i++) {
+        double p[3];
+        uint32_t v = (uint32_t)((rng = rng * 6364136223846793005ull + 1442695040888963407ull) >> 33) % s.nv;
+        for (int k = 0; k < 3; k++) {
+            rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+            p[k] = s.pos[3 * v + k] + 0.05 * d * ((double)(rng >> 11) / 9007199254740992.0 - 0.5);
+        }
+        sq_cp_hit hit;
+        sq_cp_tree_query(&t, p, &hit);
+        double best = INFINITY;
+        for (uint32_t f = 0; f < s.nf; f++) {
+            const uint32_t *c = s.face_idx + 3 * f;
+            double bary[3], q[3];
+            sq_closest_point_triangle(p, s.pos + 3 * c[0], s.pos + 3 * c[1], s.pos + 3 * c[2], bary, q);
+            double d2 = (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]);
+            if (d2 < best) best = d2;
+        }
+        assert_true(hit.dist2 == best);
+        assert_true(hit.bary[0] >= 0 && hit.bary[1] >= 0 && hit.bary[2] >= 0);
+        assert_true(fabs(hit.bary[0] + hit.bary[1] + hit.bary[2] - 1.0) < 1e-12);
+    }
+    sq_cp_tree_free(&t);
+    sq_soup_free(&s);
+}
+
+static void test_fold_margin(void **state)
+{
+    (void)state;
+    double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {1, 1, 0}, d[3] = {0, 1, 0};
+    assert_true(fabs(sq_quad_fold_margin(a, b, c, d) - 1.0) < 1e-15);
+    /* bow-tie: corners c and d swapped folds both triangulations */
+    assert_true(sq_quad_fold_margin(a, b, d, c) < 0.0);
+    /* degenerate: a repeated point counts as folded */
+    assert_true(sq_quad_fold_margin(a, b, b, d) == -1.0);
+    /* non-convex dart: one triangulation folds, the other does not */
+    double e[3] = {0.4, 0.4, 0};
+    assert_true(sq_quad_fold_margin(a, b, e, d) > 0.0);
+}
+
+/* Catmull-Clark-style split: every triangle becomes three quads (corner,
+ * edge midpoints, centroid). Vertices: input, then one per edge, then one
+ * per face. */
+static void split_triangles(const sq_soup *s, uint32_t *nv_out, double **pos_out, uint32_t *nq_out, uint32_t **q_out)
+{
+    sq_mesh m;
+    sq_error err;
+    assert_int_equal(sq_mesh_from_soup(s, 0, &m, &err), SQ_OK);
+    uint32_t *edge = malloc(m.nh * sizeof(uint32_t)), ne = 0;
+    for (uint32_t h = 0; h < m.nh; h++)
+        if (h < m.he_twin[h]) edge[h] = edge[m.he_twin[h]] = ne++;
+    uint32_t nv = s->nv + ne + s->nf, nq = 3 * s->nf;
+    double *pos = malloc(3 * (size_t)nv * sizeof(double));
+    uint32_t *q = malloc(4 * (size_t)nq * sizeof(uint32_t));
+    memcpy(pos, s->pos, 3 * (size_t)s->nv * sizeof(double));
+    for (uint32_t h = 0; h < m.nh; h++) {
+        uint32_t a = m.he_vert[h], b = m.he_vert[m.he_next[h]];
+        for (int k = 0; k < 3; k++) pos[3 * (s->nv + edge[h]) + k] = 0.5 * (s->pos[3 * a + k] + s->pos[3 * b + k]);
+    }
+    for (uint32_t f = 0; f < s->nf; f++) {
+        uint32_t g = s->nv + ne + f;
+        for (int k = 0; k < 3; k++)
+            pos[3 * g + k] = (s->pos[3 * s->face_idx[3 * f] + k] + s->pos[3 * s->face_idx[3 * f + 1] + k] +
+                              s->pos[3 * s->face_idx[3 * f + 2] + k]) / 3.0;
+        for (uint32_t j = 0; j < 3; j++) { /* halfedge 3f+j starts at corner j */
+            uint32_t h = 3 * f + j, hp = 3 * f + (j + 2) % 3;
+            uint32_t *o = q + 4 * (3 * f + j);
+            o[0] = s->face_idx[3 * f + j], o[1] = s->nv + edge[h], o[2] = g, o[3] = s->nv + edge[hp];
+        }
+    }
+    free(edge);
+    sq_mesh_free(&m);
+    *nv_out = nv, *pos_out = pos, *nq_out = nq, *q_out = q;
+}
+
+/* Smooths and asserts the issue's properties: quality improves (mean
+ * |corner angle - 90| decreases), every vertex on the surface within 1e-9
+ * of the diagonal (checked with a fresh BVH), no folded quad, connectivity
+ * unchanged. */
+static void smooth_and_check(const sq_soup *surf, uint32_t nv, double *pos, uint32_t nq, const uint32_t *quads,
+                             int iterations, const char *name)
+{
+    uint32_t *q0 = malloc(4 * (size_t)nq * sizeof(uint32_t));
+    memcpy(q0, quads, 4 * (size_t)nq * sizeof(uint32_t));
+    sq_smooth_options o;
+    sq_smooth_options_default(&o);
+    o.iterations = long_mode() ? 10 : iterations;
+    sq_smooth_stats st;
+    sq_error err;
+    sq_status rc = sq_smooth_quads(surf->nv, surf->pos, surf->nf, surf->face_idx, nv, pos, nq, quads, &o, &st, &err);
+    if (rc != SQ_OK) fail_msg("%s: %s", name, err.msg);
+    print_message("%s: %u quads, mean|a-90| %.3f -> %.3f deg, min sJ %.4f -> %.4f, edge ratio %.4f -> %.4f, "
+                  "folded %u -> %u, dist %.2g -> %.2g, %d+%d iterations, %.1f s (%s)\n",
+                  name, nq, st.before.angle_mean_dev_deg, st.after.angle_mean_dev_deg, st.before.sjac_min,
+                  st.after.sjac_min, st.before.edge_ratio_mean, st.after.edge_ratio_mean, st.before.folded,
+                  st.after.folded, st.dist_before_rel, st.dist_after_rel, st.untangle_iterations, st.iterations,
+                  st.seconds, st.stop_reason);
+    assert_memory_equal(q0, quads, 4 * (size_t)nq * sizeof(uint32_t));
+    assert_true(st.after.angle_mean_dev_deg < st.before.angle_mean_dev_deg);
+    assert_int_equal(st.after.folded, 0);
+    assert_true(st.after.fold_margin_min > 0.0);
+    /* independent check of the surface distance */
+    sq_cp_tree t;
+    assert_int_equal(sq_cp_tree_build(surf->nv, surf->pos, surf->nf, surf->face_idx, &t, &err), SQ_OK);
+    double d = diag_of(surf), worst = 0.0;
+    for (uint32_t v = 0; v < nv; v++) {
+        sq_cp_hit hit;
+        sq_cp_tree_query(&t, pos + 3 * (size_t)v, &hit);
+        worst = fmax(worst, sqrt(hit.dist2) / d);
+    }
+    assert_true(worst <= 1e-9);
+    sq_cp_tree_free(&t);
+    free(q0);
+}
+
+static void run_split(const char *rel, int iterations)
+{
+    sq_soup s;
+    load(rel, &s, 0);
+    uint32_t nv, nq, *quads;
+    double *pos;
+    split_triangles(&s, &nv, &pos, &nq, &quads);
+    smooth_and_check(&s, nv, pos, nq, quads, iterations, rel);
+    free(pos), free(quads);
+    sq_soup_free(&s);
+}
+
+static void run_quads(const char *quads_rel, const char *surf_rel, int iterations)
+{
+    sq_soup s, q;
+    load(surf_rel, &s, 0);
+    load(quads_rel, &q, SQ_MESH_ALLOW_POLYGONS);
+    assert_int_equal(q.face_off[q.nf], 4 * q.nf);
+    smooth_and_check(&s, q.nv, q.pos, q.nf, q.face_idx, iterations, quads_rel);
+    sq_soup_free(&s);
+    sq_soup_free(&q);
+}
+
+static void test_split_helmet(void **state) { (void)state; run_split("mpz/helmet.obj", 5); }
+static void test_split_double_torus(void **state) { (void)state; run_split("gpjs/double-torus.obj", 2); }
+static void test_split_bunny_long(void **state)
+{
+    (void)state;
+    if (!long_mode()) skip();
+    run_split("libigl/bunny.off", 10);
+}
+
+/* folded input: 3 folded quads, vertices up to 5e-3 of the diagonal off */
+static void test_elephant_untangle(void **state)
+{
+    (void)state;
+    run_quads("quads/elephant_quadriflow5k.obj", "cid/elephant.obj", 3);
+}
+
+static void test_quads_long(void **state)
+{
+    (void)state;
+    if (!long_mode()) skip();
+    run_quads("quads/3holes_quadriflow5k.obj", "libigl/3holes.off", 10);
+    run_quads("quads/fertility_quadriflow5k.obj", "libigl/fertility.off", 10);
+    run_quads("quads/bunny_quadriflow5k.obj", "libigl/bunny.off", 10);
+    run_quads("quads/botijo_quadriflow5k.obj", "avaxman/botijo.off", 10);
+}
+
+static void test_rejects_bad_arguments(void **state)
+{
+    (void)state;
+    double tp[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint32_t tri[3] = {0, 1, 2}, quad[4] = {0, 1, 2, 7};
+    double qp[12] = {0};
+    sq_smooth_stats st;
+    sq_error err;
+    assert_int_equal(sq_smooth_quads(3, tp, 1, tri, 4, qp, 1, quad, NULL, &st, &err), SQ_ERR_INDEX);
+    assert_non_null(strstr(err.msg, "vertex 7"));
+    assert_int_equal(sq_smooth_quads(3, tp, 1, tri, 4, qp, 0, quad, NULL, &st, &err), SQ_ERR_EMPTY);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fold_margin),
+        cmocka_unit_test(test_rejects_bad_arguments),
+        cmocka_unit_test(test_closest_point_matches_brute_force),
+        cmocka_unit_test(test_split_helmet),
+        cmocka_unit_test(test_split_double_torus),
+        cmocka_unit_test(test_elephant_untangle),
+        cmocka_unit_test(test_split_bunny_long),
+        cmocka_unit_test(test_quads_long),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
