@@ -13,6 +13,7 @@
 #include "sq_domain_svg.h"
 #include "sq_io.h"
 #include "sq_mesh.h"
+#include "sq_omega.h"
 #include "sq_pattern_io.h"
 
 static void help(FILE *f)
@@ -46,6 +47,9 @@ static void help(FILE *f)
             "                    PREFIX.sides.txt (corners, sides, pairs, lengths) and\n"
             "                    PREFIX.svg (metapolygon and padded domain)\n"
             "  --no-svg          skip the picture (large domains)\n"
+            "  --omega           also cut Q to the cones along a shortest cone tree and\n"
+            "                    lay it out flat with exact integer coordinates (seed\n"
+            "                    7): verified seams, PREFIX.omega.svg\n"
             "  --json            machine-readable statistics on stdout\n"
             "  -h, --help        this help\n"
             "\n"
@@ -155,7 +159,7 @@ int sq_cmd_domain(int argc, char **argv)
     const char *mesh_path = NULL, *cones_path = NULL, *pattern_path = NULL, *prefix = NULL;
     const char *valences_arg = NULL;
     long genus = -1, offset = -1;
-    int json = 0, svg = 1;
+    int json = 0, svg = 1, omega = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -166,6 +170,8 @@ int sq_cmd_domain(int argc, char **argv)
             json = 1;
         } else if (!strcmp(a, "--no-svg")) {
             svg = 0;
+        } else if (!strcmp(a, "--omega")) {
+            omega = 1;
         } else if (!strcmp(a, "--genus") && has) {
             char *e;
             genus = strtol(argv[++i], &e, 10);
@@ -215,7 +221,12 @@ int sq_cmd_domain(int argc, char **argv)
     sq_domain D;
     sq_domain_init(&D);
     double *xy = NULL;
-    char *paths[4] = {NULL, NULL, NULL, NULL};
+    char *paths[5] = {NULL, NULL, NULL, NULL, NULL};
+    sq_cone_tree tree;
+    sq_cone_tree_init(&tree);
+    sq_omega om;
+    sq_omega_init(&om);
+    double t_omega = 0;
     int written = 0, rc = SQ_EXIT_OK;
     const char *stage = "input";
     double t0 = sq_now();
@@ -264,6 +275,16 @@ int sq_cmd_domain(int argc, char **argv)
     if (sq_domain_verify(&D, val, nval, &err)) goto fail;
     double t_verify = sq_now() - t1;
 
+    if (omega) {
+        /* seed 7: cut Q to the cones, lay it out flat, verify the seams */
+        stage = "omega";
+        double t3 = sq_now();
+        if (sq_cone_tree_shortest(&D.quads, SQ_NONE, &tree, &err) ||
+            sq_omega_build(&D, &tree, &om, &err) || sq_omega_verify(&D, &tree, &om, &err))
+            goto fail;
+        t_omega = sq_now() - t3;
+    }
+
     stage = "output";
     xy = malloc(2 * (size_t)D.quads.nv * sizeof *xy);
     if (!xy) {
@@ -276,7 +297,8 @@ int sq_cmd_domain(int argc, char **argv)
     paths[1] = join(prefix, ".closed.obj");
     paths[2] = join(prefix, ".sides.txt");
     paths[3] = join(prefix, ".svg");
-    if (!paths[0] || !paths[1] || !paths[2] || !paths[3]) {
+    paths[4] = join(prefix, ".omega.svg");
+    if (!paths[0] || !paths[1] || !paths[2] || !paths[3] || !paths[4]) {
         sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
         goto fail;
     }
@@ -295,6 +317,15 @@ int sq_cmd_domain(int argc, char **argv)
     written = 3;
     if (svg && sq_domain_write_svg(&D, paths[3], &err)) goto fail;
     written = svg ? 4 : 3;
+    if (omega) {
+        if (!svg) { /* keep paths[] dense for the listing and the cleanup */
+            free(paths[3]);
+            paths[3] = paths[4];
+            paths[4] = NULL;
+        }
+        if (sq_omega_write_svg(&D, &tree, &om, paths[written], &err)) goto fail;
+        written++;
+    }
     double t_output = sq_now() - t2;
 
     if (json) {
@@ -317,6 +348,9 @@ int sq_cmd_domain(int argc, char **argv)
         for (uint32_t i = 0; i < D.k; i++) printf("%s%u", i ? ", " : "", D.pattern.partner[i]);
         printf("],\n  \"time_domain_s\": %.6f,\n  \"time_verify_s\": %.6f,\n", D.seconds,
                t_verify);
+        if (omega)
+            printf("  \"omega\": {\"tree_edges\": %u, \"time_s\": %.6f},\n", tree.nedges,
+                   t_omega);
         printf("  \"time_output_s\": %.6f,\n  \"time_total_s\": %.6f,\n  \"outputs\": [", t_output,
                sq_now() - t0);
         for (int i = 0; i < written; i++) {
@@ -335,6 +369,10 @@ int sq_cmd_domain(int argc, char **argv)
         printf("verified       sides pair up with equal lengths; glued mesh closed, genus %u, "
                "irregular vertices = cones\n",
                D.genus);
+        if (omega)
+            printf("omega          cut along a %u-edge cone tree, laid out on the integer grid; "
+                   "seams verified exactly (%.1f ms)\n",
+                   tree.nedges, 1e3 * t_omega);
         printf("time           domain %.1f ms, verify %.1f ms, output %.1f ms\n", 1e3 * D.seconds,
                1e3 * t_verify, 1e3 * t_output);
         for (int i = 0; i < written; i++) printf("wrote          %s\n", paths[i]);
@@ -354,7 +392,9 @@ fail:
     rc = sq_exit_code(err.code);
     if (err.code == SQ_ERR_INTERNAL) rc = SQ_EXIT_FAILURE;
 done:
-    for (int i = 0; i < 4; i++) free(paths[i]);
+    for (int i = 0; i < 5; i++) free(paths[i]);
+    sq_cone_tree_free(&tree);
+    sq_omega_free(&om);
     free(xy);
     free(val);
     sq_pattern_free(&pat);

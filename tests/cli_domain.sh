@@ -64,6 +64,10 @@ done <"$shared/data/MANIFEST.tsv"
 "$bin" domain --genus 3 --valences 3,3,3,3,3,3,5,7,22 -o "$tmp/h" >/dev/null \
   && python3 "$referee" --topology-only --genus 3 --valences 3,3,3,3,3,3,5,7,22 "$tmp/h.closed.obj" >/dev/null \
   && ok || bad "helmet valences"
+"$bin" domain --genus 3 --valences 3,3,3,3,3,3,5,7,22 -o "$tmp/ho" --omega --no-svg --json >"$tmp/ho.json" \
+  && [ -s "$tmp/ho.omega.svg" ] && [ ! -e "$tmp/ho.svg" ] \
+  && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["omega"]["tree_edges"] > 0' "$tmp/ho.json" \
+  && ok || bad "--omega"
 "$bin" domain --genus 1 --valences 3,5 -o "$tmp/t35" >/dev/null 2>"$tmp/t35.err"
 [ $? -eq 1 ] && grep -q Jucovic "$tmp/t35.err" && [ ! -e "$tmp/t35.quad.obj" ] && ok || bad "torus 3-5"
 "$bin" domain --genus 2 --valences 3,5,5 -o "$tmp/gb" >/dev/null 2>"$tmp/gb.err"
