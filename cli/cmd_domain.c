@@ -337,7 +337,12 @@ int sq_cmd_domain(int argc, char **argv)
                (unsigned long long)D.quads_unpadded, (unsigned long long)D.quads_added);
         printf("  \"quads\": %u,\n  \"offset\": %u,\n  \"offsets_feasible\": %u,\n", D.quads.nf,
                D.offset, D.offsets_feasible);
-        printf("  \"slide\": null,\n  \"pieces\": %u,\n  \"refinement\": %llu,\n",
+        if (D.slid)
+            printf("  \"slide\": {\"length\": %u, \"shift\": %lld, \"seam\": [%u, %u]},\n",
+                   D.slide_length, (long long)D.slide_shift, D.slide_start, D.slide_end);
+        else
+            printf("  \"slide\": null,\n");
+        printf("  \"pieces\": %u,\n  \"refinement\": %llu,\n",
                D.genus == 0 ? 4u : D.genus == 1 && D.k == 6 ? 2u : 1u,
                (unsigned long long)D.refine);
         printf("  \"padding\": [");
@@ -363,9 +368,13 @@ int sq_cmd_domain(int argc, char **argv)
         printf("metapolygon    %u faces\n", D.meta.nf);
         printf("quads          %llu before padding + %llu padding = %u\n",
                (unsigned long long)D.quads_unpadded, (unsigned long long)D.quads_added, D.quads.nf);
-        if (D.genus >= 2)
+        if (D.genus >= 2 && !D.slid)
             printf("correspondence offset %u (%u of %u feasible), refinement %llu\n", D.offset,
                    D.offsets_feasible, D.k, (unsigned long long)D.refine);
+        if (D.slid)
+            printf("slide          the pattern fails the rank test: one slide (seed 6.4) along "
+                   "%u edges, shift %lld\n",
+                   D.slide_length, (long long)D.slide_shift);
         printf("verified       sides pair up with equal lengths; glued mesh closed, genus %u, "
                "irregular vertices = cones\n",
                D.genus);

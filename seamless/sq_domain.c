@@ -9,6 +9,7 @@
 
 #include "sq_cones.h"
 #include "sq_domain_internal.h"
+#include "sq_domain_slide.h"
 #include "sq_mesh.h"
 #include "sq_metapolygon_subdivide.h"
 #include "sq_padding.h"
@@ -293,10 +294,20 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
     uint32_t nchoice = feasible_offsets(&D->pattern, len, opt ? opt->offset : SQ_NONE,
                                         D->quads_unpadded, &choice, err);
     D->offsets_feasible = nchoice;
-    if (nchoice == 0) {
-        free(choice), free(corner_v), free(len);
-        st = err && err->code ? err->code : SQ_ERR_ARGUMENT;
-        goto fail;
+    if (nchoice == 0) { /* seed 6.4: the pattern fails the rank test: one slide */
+        free(choice);
+        sq_slide_info info;
+        memset(&info, 0, sizeof info);
+        st = sq_domain_slide_build(D, corner_v, len, opt ? opt->offset : SQ_NONE, &info, err);
+        free(corner_v), free(len);
+        if (st) goto fail;
+        D->slid = 1;
+        D->slide_length = info.length;
+        D->slide_shift = info.shift;
+        D->slide_start = info.seam_start;
+        D->slide_end = info.seam_end;
+        D->seconds = now_seconds() - t0;
+        return SQ_OK;
     }
     sq_metapolygon unpadded;
     sq_metapolygon_init(&unpadded);

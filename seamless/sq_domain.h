@@ -61,6 +61,11 @@ typedef struct sq_domain {
     uint64_t quads_unpadded;  /* quads of the subdivided metapolygon         */
     uint64_t quads_added;     /* quads added by padding                      */
     uint32_t offsets_feasible;/* side correspondences with a padding         */
+    int slid;                 /* 1: built with one slide (seed 6.4)          */
+    uint32_t slide_length;    /* edges of the slid straight sequence         */
+    int64_t slide_shift;      /* the relative shift t of the two pieces      */
+    uint32_t slide_start;     /* the seam's end vertices in Q                */
+    uint32_t slide_end;
     double seconds;           /* time of sq_domain_build                     */
 } sq_domain;
 

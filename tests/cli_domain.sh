@@ -68,6 +68,13 @@ done <"$shared/data/MANIFEST.tsv"
   && [ -s "$tmp/ho.omega.svg" ] && [ ! -e "$tmp/ho.svg" ] \
   && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["omega"]["tree_edges"] > 0' "$tmp/ho.json" \
   && ok || bad "--omega"
+# a genus-2 pattern of rank 1: padding alone cannot equalize it, one slide can
+v=3,5,5,5,5,5,5,5,5,5
+"$bin" domain --genus 2 --valences $v --pattern "$root/tests/data/rank1_genus2.pattern" -o "$tmp/r1" \
+  --json >"$tmp/r1.json" \
+  && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["slide"]["length"] > 0' "$tmp/r1.json" \
+  && python3 "$referee" --topology-only --genus 2 --valences $v "$tmp/r1.closed.obj" >/dev/null \
+  && ok || bad "slide on a rank-1 pattern"
 "$bin" domain --genus 1 --valences 3,5 -o "$tmp/t35" >/dev/null 2>"$tmp/t35.err"
 [ $? -eq 1 ] && grep -q Jucovic "$tmp/t35.err" && [ ! -e "$tmp/t35.quad.obj" ] && ok || bad "torus 3-5"
 "$bin" domain --genus 2 --valences 3,5,5 -o "$tmp/gb" >/dev/null 2>"$tmp/gb.err"
