@@ -12,9 +12,10 @@
 /* Exit codes shared by every subcommand. */
 enum {
     SQ_EXIT_OK = 0,
-    SQ_EXIT_INVALID_INPUT = 1, /* the input cannot be processed (message says why) */
+    SQ_EXIT_INVALID_INPUT = 1, /* the input cannot be processed, or an output cannot */
+                               /* be written (the message says why)                 */
     SQ_EXIT_USAGE = 2,         /* wrong command line                                */
-    SQ_EXIT_FAILURE = 3        /* internal or I/O failure                           */
+    SQ_EXIT_FAILURE = 3        /* internal failure: a bug, or out of memory         */
 };
 
 int sq_cmd_check(int argc, char **argv);

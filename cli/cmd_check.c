@@ -133,13 +133,15 @@ static void print_json(const check_report *r)
             int first = 1;
             for (uint32_t k = 0; k < MAX_VALENCE_HIST; k++) {
                 if (k == 4 || !r->hist[k]) continue;
-                printf("%s\"%u\": %u", first ? "" : ", ", k, r->hist[k]);
+                printf("%s\"%s%u\": %u", first ? "" : ", ", k == MAX_VALENCE_HIST - 1 ? ">=" : "",
+                       k, r->hist[k]);
                 first = 0;
             }
             printf("}, \"gauss_bonnet\": {\"ok\": %s, \"sum_4_minus_k\": %lld, \"required\": %lld}",
                    r->gauss_bonnet ? "true" : "false", (long long)r->defect_sum,
                    (long long)(4 * r->euler));
-            printf(", \"realizable\": %s", r->realizable ? "true" : "false");
+            if (r->gauss_bonnet) printf(", \"realizable\": %s", r->realizable ? "true" : "false");
+            else printf(", \"realizable\": null");
         }
         printf("}");
     }

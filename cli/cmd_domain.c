@@ -67,6 +67,10 @@ static int parse_valences(const char *s, int32_t **out, uint32_t *n)
     int32_t *v = malloc(cap * sizeof *v);
     if (!v) return 0;
     const char *p = s;
+    if (!*p) {
+        free(v);
+        return 0;
+    }
     while (*p) {
         char *e;
         errno = 0;
@@ -84,6 +88,10 @@ static int parse_valences(const char *s, int32_t **out, uint32_t *n)
             v = t;
         }
         v[k++] = (int32_t)x;
+        if (*e == ',' && !e[1]) { /* trailing comma */
+            free(v);
+            return 0;
+        }
         p = *e ? e + 1 : e;
     }
     *out = v;
@@ -174,15 +182,19 @@ int sq_cmd_domain(int argc, char **argv)
             omega = 1;
         } else if (!strcmp(a, "--genus") && has) {
             char *e;
-            genus = strtol(argv[++i], &e, 10);
-            if (*e || genus < 0 || genus > 100000) {
+            const char *arg = argv[++i];
+            errno = 0;
+            genus = strtol(arg, &e, 10);
+            if (e == arg || *e || errno || genus < 0 || genus > 100000) {
                 fprintf(stderr, "seamquad domain: --genus needs a non-negative integer\n");
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--offset") && has) {
             char *e;
-            offset = strtol(argv[++i], &e, 10);
-            if (*e || offset < 0) {
+            const char *arg = argv[++i];
+            errno = 0;
+            offset = strtol(arg, &e, 10);
+            if (e == arg || *e || errno || offset < 0 || offset >= (long)SQ_NONE) {
                 fprintf(stderr, "seamquad domain: --offset needs a non-negative integer\n");
                 return SQ_EXIT_USAGE;
             }
@@ -242,23 +254,20 @@ int sq_cmd_domain(int argc, char **argv)
         val = malloc((size_t)mesh.nv * sizeof *val);
         if (!val) {
             sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
-        } else if (sq_cones_read(cones_path, mesh.nv, val, NULL, &err) == SQ_OK &&
-                   sq_cones_check_realizable(mesh.nv, val, genus, &err) == SQ_OK) {
-            nval = 0;
-            for (uint32_t v = 0; v < mesh.nv; v++)
-                if (val[v] != 4) val[nval++] = val[v];
-        }
-        sq_mesh_free(&mesh);
-        sq_soup_free(&soup);
-        if (err.code) {
-            if (err.code == SQ_ERR_UNREALIZABLE || err.code == SQ_ERR_GAUSS_BONNET ||
-                err.code == SQ_ERR_CONE_VALUE) {
+        } else if (sq_cones_read(cones_path, mesh.nv, val, NULL, &err) == SQ_OK) {
+            if (sq_cones_check_realizable(mesh.nv, val, genus, &err) == SQ_OK) {
+                nval = 0;
+                for (uint32_t v = 0; v < mesh.nv; v++)
+                    if (val[v] != 4) val[nval++] = val[v];
+            } else { /* the library message knows vertices, not the file */
                 char msg[SQ_ERROR_MSG_MAX];
                 snprintf(msg, sizeof msg, "%s", err.msg);
                 sq_error_set(&err, err.code, "%s: %s", cones_path, msg);
             }
-            goto fail;
         }
+        sq_mesh_free(&mesh);
+        sq_soup_free(&soup);
+        if (err.code) goto fail;
     } else if (!parse_valences(valences_arg, &val, &nval)) {
         fprintf(stderr, "seamquad domain: --valences needs comma-separated integers, got '%s'\n",
                 valences_arg);
@@ -398,8 +407,9 @@ fail:
         sq_json_string(stdout, err.msg);
         printf("}\n}\n");
     }
-    rc = sq_exit_code(err.code);
-    if (err.code == SQ_ERR_INTERNAL) rc = SQ_EXIT_FAILURE;
+    /* the command line was checked above: an argument error from the
+     * library here is about the input's content (pattern, cones, genus) */
+    rc = err.code == SQ_ERR_ARGUMENT ? SQ_EXIT_INVALID_INPUT : sq_exit_code(err.code);
 done:
     for (int i = 0; i < 5; i++) free(paths[i]);
     sq_cone_tree_free(&tree);

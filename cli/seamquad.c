@@ -44,8 +44,9 @@ static void usage(FILE *f)
             "\n"
             "Start with:  seamquad check MESH --cones CONES\n"
             "\n"
-            "exit codes: 0 success, 1 the input cannot be processed (the message says\n"
-            "why and where), 2 wrong command line, 3 internal or I/O failure.\n");
+            "exit codes: 0 success, 1 the input cannot be processed or an output cannot\n"
+            "be written (the message says why and where), 2 wrong command line,\n"
+            "3 internal failure (a bug, or out of memory).\n");
 }
 
 int main(int argc, char **argv)

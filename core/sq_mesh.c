@@ -332,7 +332,7 @@ static sq_status match_twins(const sq_soup *s, sq_mesh *m, sq_error *err)
 
 /* ---- step 3: vertex manifoldness -------------------------------------- */
 
-static sq_status check_vertex_fans(const sq_soup *s, sq_mesh *m, sq_error *err)
+static sq_status check_vertex_fans(const sq_soup *s, sq_mesh *m, unsigned flags, sq_error *err)
 {
     uint32_t *outdeg = calloc(m->nv, sizeof *outdeg);
     if (!outdeg) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
@@ -354,6 +354,23 @@ static sq_status check_vertex_fans(const sq_soup *s, sq_mesh *m, sq_error *err)
         }
     }
     sq_status st = SQ_OK;
+    /* In a closed manifold triangle mesh a vertex with two faces means the
+     * two faces share all three corners (a two-triangle "pillow"): no cone
+     * set and no quad mesh can live on that. Quad meshes may have valence-2
+     * vertices (valence-2 cones). */
+    if (!bad && !(flags & SQ_MESH_ALLOW_POLYGONS)) {
+        for (uint32_t v = 0; v < m->nv; v++) {
+            if (outdeg[v] >= 3) continue;
+            char pre[WHERE_MAX];
+            uint32_t h = m->v_he[v];
+            st = sq_error_set(err, SQ_ERR_DEGENERATE,
+                              "%svertex %u has only %u faces: faces %u and %u share all three "
+                              "corners, a degenerate two-sided surface piece",
+                              vertex_prefix(s, v, pre), v, outdeg[v], m->he_face[h],
+                              m->he_face[m->he_twin[h]]);
+            break;
+        }
+    }
     if (bad) {
         char pre[WHERE_MAX], m1[64];
         st = sq_error_set(err, SQ_ERR_NONMANIFOLD_VERTEX,
@@ -481,7 +498,7 @@ sq_status sq_mesh_from_soup(const sq_soup *s, unsigned flags, sq_mesh *out, sq_e
         }
     }
 
-    if ((st = match_twins(s, &m, err)) || (st = check_vertex_fans(s, &m, err)) ||
+    if ((st = match_twins(s, &m, err)) || (st = check_vertex_fans(s, &m, flags, err)) ||
         (st = check_connected(s, &m, err)) ||
         (!(flags & SQ_MESH_SKIP_DEGENERATE) && (st = check_degenerate(s, &m, err)))) {
         sq_mesh_free(&m);

@@ -112,7 +112,13 @@ static uint32_t feasible_offsets(const sq_pattern *pat, const uint32_t *meta_len
         if (fixed != SQ_NONE ? o != fixed : o % stride != 0) continue;
         for (uint32_t i = 0; i < k; i++) L[i] = meta_len[(i + o) % k];
         int64_t *w = malloc((size_t)k * sizeof *w);
-        if (!w) break;
+        if (!w) {
+            for (uint32_t t = 0; t < n; t++) free(c[t].w);
+            free(c), free(L);
+            sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            *out = NULL;
+            return 0;
+        }
         sq_pad_result res;
         memset(&res, 0, sizeof res);
         res.w = w;
@@ -147,7 +153,7 @@ static uint32_t feasible_offsets(const sq_pattern *pat, const uint32_t *meta_len
         c[t].total = (long double)res.d * (long double)res.d * (long double)quads0 +
                      (long double)res.added_quads;
     }
-    qsort(c, refine_top, sizeof *c, cmp_choice);
+    qsort(c, n, sizeof *c, cmp_choice);
     free(L);
     *out = c;
     return n;
@@ -447,9 +453,14 @@ sq_status sq_domain_glue(const sq_domain *D, const double *xy, sq_soup *out,
         out->face_off[f] = c;
         uint32_t h0 = Q->f_he[f], h = h0;
         do {
+            if (c >= 4 * (size_t)Q->nf) {
+                sq_soup_free(out);
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "face %u of Q is not a quad", f);
+                goto done;
+            }
             out->face_idx[c++] = id[Q->he_vert[h]];
             h = Q->he_next[h];
-        } while (h != h0 && c < 4 * (size_t)Q->nf);
+        } while (h != h0);
     }
     out->face_off[Q->nf] = c;
     if (closed_of) memcpy(closed_of, id, (size_t)Q->nv * sizeof *id);

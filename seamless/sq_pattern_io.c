@@ -26,7 +26,8 @@ static int next_int(const char **p, const char *end, long long *out, unsigned *l
     char buf[32];
     size_t n = 0;
     while (*p < end && !(**p == ' ' || **p == '\t' || **p == '\r' || **p == '\n' || **p == '#')) {
-        if (n + 1 < sizeof buf) buf[n++] = **p;
+        if (n + 1 >= sizeof buf) return -1; /* too long for any valid number */
+        buf[n++] = **p;
         (*p)++;
     }
     buf[n] = '\0';
@@ -80,7 +81,7 @@ sq_status sq_pattern_parse(const char *data, size_t size, const char *name, sq_p
     if (st) {
         char msg[SQ_ERROR_MSG_MAX];
         snprintf(msg, sizeof msg, "%s", err ? err->msg : "");
-        return sq_error_set(err, st, "%s: invalid pattern: %s", name, msg);
+        return sq_error_set(err, SQ_ERR_PARSE, "%s: invalid pattern: %s", name, msg);
     }
     return SQ_OK;
 }
