@@ -6,8 +6,10 @@
  * edge length; Ceres (sq_ceres_adapter.h) minimizes the objective of
  * sq_smooth_energy.c under the no-fold constraint; the result is projected
  * back onto the surface (closest point, sq_closest_point.h) and accepted
- * only if no quad folds there and (smoothing) the energy did not grow;
- * otherwise the step is halved, up to MAX_BACKTRACK times, then rejected. */
+ * only if no quad folds there and (smoothing) no referee measure gets
+ * worse (quality_not_worse, after revert_worsened); otherwise the step is
+ * halved, up to MAX_BACKTRACK times, then retried with damping, then
+ * rejected. */
 #include <float.h>
 #include <stdio.h>
 #include <math.h>
@@ -20,6 +22,8 @@
 #include "sq_smooth_internal.h"
 
 #define MAX_BACKTRACK 8
+#define MAX_RETRY 2         /* damped retries of a rejected outer step        */
+#define DAMPING_START 0.25  /* damping weight of the first retry             */
 
 void sq_smooth_options_default(sq_smooth_options *o)
 {
@@ -44,6 +48,9 @@ typedef struct smoother {
     sq_smooth_stats *stats;
     sq_cp_tree tree;
     const double *tri_normal;   /* 3*snt unit normals                       */
+    const double *vnormal;      /* 3*snv area-weighted vertex normals        */
+    const uint32_t *stri;       /* 3*snt surface triangles                   */
+    double *vbary, *cand_bary;  /* 3*nv barycentrics of each vertex in vtri  */
     uint32_t nv, nq;
     const uint32_t *quads;
     double *pos;                /* 3*nv, caller's array: the accepted state  */
@@ -65,7 +72,18 @@ static void set_frames(smoother *s)
 {
     for (uint32_t v = 0; v < s->nv; v++) {
         double *f = s->frame + 9 * (size_t)v;
-        const double *n = s->tri_normal + 3 * (size_t)s->vtri[v];
+        /* the surface's smooth normal at the vertex: area-weighted vertex
+         * normals interpolated with its barycentric coordinates (a sliver
+         * triangle's own normal is noise; see docs/smooth.md) */
+        const double *bc = s->vbary + 3 * (size_t)v;
+        const uint32_t *tv = s->stri + 3 * (size_t)s->vtri[v];
+        double n[3];
+        for (int k = 0; k < 3; k++)
+            n[k] = bc[0] * s->vnormal[3 * (size_t)tv[0] + k] + bc[1] * s->vnormal[3 * (size_t)tv[1] + k] +
+                   bc[2] * s->vnormal[3 * (size_t)tv[2] + k];
+        double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(nl > 0.0)) memcpy(n, s->tri_normal + 3 * (size_t)s->vtri[v], sizeof n), nl = 1.0;
+        for (int k = 0; k < 3; k++) n[k] /= nl;
         /* t1: n x (the axis least aligned with n), t2 = n x t1 */
         int ax = fabs(n[0]) <= fabs(n[1]) ? (fabs(n[0]) <= fabs(n[2]) ? 0 : 2) : (fabs(n[1]) <= fabs(n[2]) ? 1 : 2);
         double a[3] = {0, 0, 0};
@@ -94,6 +112,15 @@ static void set_frames(smoother *s)
             total += d;
         }
     double mean = total / (4.0 * s->nq);
+    /* per-quad reference normal: the mean of its corners' surface normals */
+    for (uint32_t q = 0; q < s->nq; q++) {
+        double *n = s->ref_normal + 3 * (size_t)q;
+        n[0] = n[1] = n[2] = 0.0;
+        for (int k = 0; k < 4; k++)
+            for (int j = 0; j < 3; j++) n[j] += s->frame[9 * (size_t)s->quads[4 * (size_t)q + k] + 6 + j];
+        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int j = 0; j < 3; j++) n[j] = l > 0.0 ? n[j] / l : (j == 2);
+    }
     for (uint32_t v = 0; v < s->nv; v++) {
         s->h[v] = cnt[v] ? s->h[v] / cnt[v] : mean;
         if (!(s->h[v] > 0.0)) s->h[v] = mean > 0.0 ? mean : 1.0;
@@ -106,6 +133,62 @@ static void compute_margins(smoother *s, const double *pos)
         const uint32_t *f = s->quads + 4 * (size_t)q;
         s->margin[q] = sq_quad_fold_margin(pos + 3 * (size_t)f[0], pos + 3 * (size_t)f[1],
                                            pos + 3 * (size_t)f[2], pos + 3 * (size_t)f[3]);
+    }
+}
+
+/* The acceptance test of a smoothing step (docs/smooth.md, "Acceptance"):
+ * none of the referee's measures gets worse, and the primary one improves. */
+static int quality_not_worse(const sq_quad_quality *n, const sq_quad_quality *o)
+{
+    return n->angle_mean_dev_deg < o->angle_mean_dev_deg && n->sjac_min >= o->sjac_min &&
+           n->edge_ratio_mean <= o->edge_ratio_mean && n->folded == 0;
+}
+
+/* Local acceptance (docs/smooth.md, "Acceptance"): a quad that the candidate
+ * would fold, push below min(its own, the current minimum) scaled Jacobian
+ * or give an edge ratio above its own + tau gets its four vertices reverted
+ * to the accepted state; repeated until no quad is reverted (a revert
+ * changes the neighbours' quads). revert_worsened: tau = infinity, then
+ * 1, 1/2, ... (then 0) while the mean edge ratio is above the current one. */
+static void revert_pass(smoother *s, const sq_quad_quality *g, double tau)
+{
+    for (int round = 0; round < 64; round++) {
+        uint32_t reverted = 0;
+        for (uint32_t q = 0; q < s->nq; q++) {
+            const uint32_t *f = s->quads + 4 * (size_t)q;
+            int moved = 0;
+            for (int k = 0; k < 4; k++)
+                moved |= memcmp(s->cand + 3 * (size_t)f[k], s->pos + 3 * (size_t)f[k], 3 * sizeof(double)) != 0;
+            if (!moved) continue;
+            sq_quad_quality qo, qn;
+            sq_quad_quality_compute(s->pos, 1, f, &qo);
+            sq_quad_quality_compute(s->cand, 1, f, &qn);
+            int bad = qn.folded || !(qn.fold_margin_min >= s->threshold[q]) ||
+                      !(qn.sjac_min >= fmin(qo.sjac_min, g->sjac_min)) ||
+                      !(qn.edge_ratio_mean <= qo.edge_ratio_mean + tau);
+            if (!bad) continue;
+            for (int k = 0; k < 4; k++) {
+                uint32_t v = f[k];
+                memcpy(s->cand + 3 * (size_t)v, s->pos + 3 * (size_t)v, 3 * sizeof(double));
+                memcpy(s->cand_bary + 3 * (size_t)v, s->vbary + 3 * (size_t)v, 3 * sizeof(double));
+                s->cand_tri[v] = s->vtri[v];
+            }
+            reverted++;
+        }
+        if (!reverted) return;
+    }
+}
+
+static void revert_worsened(smoother *s, const sq_quad_quality *g)
+{
+    revert_pass(s, g, INFINITY);
+    for (double tau = 1.0;; tau *= 0.5) {
+        sq_quad_quality qn;
+        sq_quad_quality_compute(s->cand, s->nq, s->quads, &qn);
+        if (qn.edge_ratio_mean <= g->edge_ratio_mean) return;
+        if (tau < 1e-4) tau = 0.0;
+        revert_pass(s, g, tau);
+        if (tau == 0.0) return;
     }
 }
 
@@ -122,6 +205,12 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
         s->res_dim[q] = sq_smooth_residual_count(&s->ctx, q);
         if (s->threshold[q] > -INFINITY) s->con_quad[ncon++] = q;
     }
+    if (smoothing && s->ctx.damping > 0.0) /* retry: a damped, shorter step */
+        for (uint32_t v = 0; v < s->nv; v++, nres++) {
+            s->res_off[nres + 1] = s->res_off[nres] + 1;
+            s->res_param[s->res_off[nres]] = v;
+            s->res_dim[nres] = 2;
+        }
     /* constraint blocks reuse res_param (same four vertices as the quad) */
     uint32_t *con_off = malloc((ncon + 1) * sizeof(uint32_t));
     uint32_t *con_param = malloc(4 * (size_t)(ncon ? ncon : 1) * sizeof(uint32_t));
@@ -154,7 +243,8 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
     memcpy(s->stats->linear_solver, sum.linear_solver, sizeof sum.linear_solver);
     if (sum.successful_steps == 0) return 2;
 
-    double e_old = smoothing ? sq_smooth_energy(&s->ctx, s->pos) : 0.0;
+    sq_quad_quality q_old;
+    if (smoothing) sq_quad_quality_compute(s->pos, s->nq, s->quads, &q_old);
     double lambda = 1.0;
     for (int bt = 0; bt <= MAX_BACKTRACK; bt++, lambda *= 0.5) {
         for (uint32_t v = 0; v < s->nv; v++) {
@@ -166,7 +256,9 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
             sq_cp_tree_query(&s->tree, y, &hit);
             memcpy(s->cand + 3 * (size_t)v, hit.point, sizeof hit.point);
             s->cand_tri[v] = hit.tri;
+            memcpy(s->cand_bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
         }
+        if (smoothing) revert_worsened(s, &q_old);
         int ok = 1;
         for (uint32_t q = 0; q < s->nq && ok; q++) {
             if (s->threshold[q] == -INFINITY) continue;
@@ -175,10 +267,15 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
                                            s->cand + 3 * (size_t)f[2], s->cand + 3 * (size_t)f[3]);
             if (!(m >= s->threshold[q])) ok = 0;
         }
-        if (ok && smoothing && !(sq_smooth_energy(&s->ctx, s->cand) <= e_old)) ok = 0;
+        if (ok && smoothing) {
+            sq_quad_quality q_new;
+            sq_quad_quality_compute(s->cand, s->nq, s->quads, &q_new);
+            ok = quality_not_worse(&q_new, &q_old);
+        }
         if (ok) {
             memcpy(s->pos, s->cand, 3 * (size_t)s->nv * sizeof(double));
             memcpy(s->vtri, s->cand_tri, s->nv * sizeof(uint32_t));
+            memcpy(s->vbary, s->cand_bary, 3 * (size_t)s->nv * sizeof(double));
             return 1;
         }
         s->stats->backtracks++;
@@ -231,17 +328,20 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     s.cand = malloc(3 * (size_t)nv * sizeof(double));
     s.cand_tri = malloc(nv * sizeof(uint32_t));
     s.con_quad = malloc(nq * sizeof(uint32_t));
-    s.res_off = malloc((nq + 1) * sizeof(uint32_t));
-    s.res_param = malloc(4 * (size_t)nq * sizeof(uint32_t));
-    s.res_dim = malloc(nq * sizeof(uint32_t));
+    s.res_off = malloc(((size_t)nq + nv + 1) * sizeof(uint32_t));
+    s.res_param = malloc((4 * (size_t)nq + nv) * sizeof(uint32_t));
+    s.res_dim = malloc(((size_t)nq + nv) * sizeof(uint32_t));
     s.untangle = calloc(nq, 1);
+    double *vnormal = calloc(3 * (size_t)snv, sizeof(double));
+    s.vbary = malloc(3 * (size_t)nv * sizeof(double));
+    s.cand_bary = malloc(3 * (size_t)nv * sizeof(double));
     if (!tri_normal || !base || !s.vtri || !s.frame || !s.h || !s.ref_normal || !s.threshold || !s.margin ||
         !s.x || !s.cand || !s.cand_tri || !s.con_quad || !s.res_off || !s.res_param || !s.res_dim ||
-        !s.untangle) {
+        !s.untangle || !vnormal || !s.vbary || !s.cand_bary) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory for %u vertices", nv);
         goto done;
     }
-    s.tri_normal = tri_normal;
+    s.tri_normal = tri_normal, s.vnormal = vnormal, s.stri = stri;
     double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
     for (uint32_t v = 0; v < snv; v++)
         for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], spos[3 * (size_t)v + k]), hi[k] = fmax(hi[k], spos[3 * (size_t)v + k]);
@@ -256,10 +356,12 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
             n[0] = 0, n[1] = 0, n[2] = 1, l = 1;
         }
         for (int k = 0; k < 3; k++) tri_normal[3 * (size_t)t + k] = n[k] / l;
+        for (int j = 0; j < 3; j++) /* area weight: the unnormalized normal */
+            for (int k = 0; k < 3; k++) vnormal[3 * (size_t)stri[3 * (size_t)t + j] + k] += n[k];
     }
     s.ctx = (sq_smooth_ctx){nv, nq, quads, base, s.frame, s.h, s.ref_normal, s.untangle, s.threshold,
                             s.con_quad, opt->angle_weight, opt->length_weight, opt->untangle_weight,
-                            opt->barrier_weight, 0};
+                            opt->barrier_weight, 0.0, 0};
 
     sq_quad_quality_compute(pos, nq, quads, &stats->before);
     stats->dist_before_rel = max_dist_rel(&s.tree, nv, pos, diag);
@@ -269,6 +371,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         sq_cp_tree_query(&s.tree, pos + 3 * (size_t)v, &hit);
         memcpy(pos + 3 * (size_t)v, hit.point, sizeof hit.point);
         s.vtri[v] = hit.tri;
+        memcpy(s.vbary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
     }
     sq_quad_quality_compute(pos, nq, quads, &stats->projected);
 
@@ -296,15 +399,6 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         }
         memcpy(base, pos, 3 * (size_t)nv * sizeof(double));
         set_frames(&s);
-        for (uint32_t q = 0; q < nq; q++) {
-            if (!s.untangle[q]) continue;
-            double *n = s.ref_normal + 3 * (size_t)q;
-            n[0] = n[1] = n[2] = 0.0;
-            for (int k = 0; k < 4; k++)
-                for (int j = 0; j < 3; j++) n[j] += s.frame[9 * (size_t)quads[4 * (size_t)q + k] + 6 + j];
-            double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (int j = 0; j < 3; j++) n[j] = l > 0.0 ? n[j] / l : (j == 2);
-        }
         int r = outer_step(&s, 0, err);
         stats->untangle_iterations++;
         if (r < 0) {
@@ -318,9 +412,12 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     memset(s.untangle, 0, nq);
     compute_margins(&s, pos);
     for (uint32_t q = 0; q < nq; q++) s.threshold[q] = fmin(opt->fold_margin, 0.5 * s.margin[q]);
+    memcpy(base, pos, 3 * (size_t)nv * sizeof(double));
+    set_frames(&s); /* reference normals of the energy */
     stats->energy_before = sq_smooth_energy(&s.ctx, pos);
     double energy = stats->energy_before;
     snprintf(stats->stop_reason, sizeof stats->stop_reason, "iteration limit (%d)", opt->iterations);
+    int retries = 0;
     for (int it = 0; it < opt->iterations; it++) {
         memcpy(base, pos, 3 * (size_t)nv * sizeof(double));
         set_frames(&s);
@@ -334,11 +431,21 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
             break;
         }
         if (r == 0) {
-            snprintf(stats->stop_reason, sizeof stats->stop_reason,
-                     "step rejected: after re-projection it would fold a quad or raise the energy, "
-                     "even halved %d times", MAX_BACKTRACK);
-            break;
+            /* retry from the same state with a damped step: each vertex's
+             * offset gets a residual damping * (a, b), damping x4 per retry */
+            if (retries == MAX_RETRY) {
+                snprintf(stats->stop_reason, sizeof stats->stop_reason,
+                         "step rejected: after re-projection it would fold a quad or worsen a quality measure, "
+                         "even halved %d times and damped %d times", MAX_BACKTRACK, MAX_RETRY);
+                break;
+            }
+            retries++, stats->retries++;
+            s.ctx.damping = s.ctx.damping > 0.0 ? 4.0 * s.ctx.damping : DAMPING_START;
+            it--; /* a retry does not count as an iteration */
+            continue;
         }
+        retries = 0;
+        s.ctx.damping = s.ctx.damping > DAMPING_START ? 0.25 * s.ctx.damping : 0.0;
         stats->iterations++;
         double e = sq_smooth_energy(&s.ctx, pos);
         if (opt->progress) opt->progress(opt->progress_user, "smooth", stats->iterations, e, 0);
@@ -361,5 +468,6 @@ done:
     free(tri_normal), free(base), free(s.vtri), free(s.frame), free(s.h), free(s.ref_normal);
     free(s.threshold), free(s.margin), free(s.x), free(s.cand), free(s.cand_tri), free(s.con_quad);
     free(s.res_off), free(s.res_param), free(s.res_dim), free(s.untangle);
+    free(vnormal), free(s.vbary), free(s.cand_bary);
     return st;
 }

@@ -68,7 +68,8 @@ typedef struct sq_smooth_stats {
     long solver_rejected;        /* Ceres steps rejected (any reason)           */
     long fold_rejections;        /* trial states that would fold a quad         */
     int backtracks;              /* halvings of a step after re-projection      */
-    int steps_rejected;          /* outer steps rejected whole (would fold)     */
+    int steps_rejected;          /* outer steps rejected whole (fold / quality) */
+    int retries;                 /* damped retries after a rejected step        */
     double energy_before, energy_after; /* smoothing energy (sum of squares)   */
     double seconds;
     char linear_solver[48];

@@ -1,6 +1,6 @@
-/* seamquad: the smoothing objective (docs/smooth.md): per quad, the cosines
- * of its four corner angles (0 at 90 degrees), its four edge lengths relative
- * to their mean (0 when equal), and for quads being untangled a hinge on the
+/* seamquad: the smoothing objective (docs/smooth.md): per quad, its four
+ * signed corner angles minus 90 degrees (radians), the logs of its four edge
+ * lengths over their geometric mean (0 when equal), and for quads being untangled a hinge on the
  * alignment of each of its four triangles with the surface normal; and a
  * log barrier keeping its fold margin above its threshold. */
 #include <math.h>
@@ -9,6 +9,7 @@
 #include "sq_smooth_internal.h"
 
 #define UNTANGLE_COS 0.2 /* untangling pushes triangle normals within ~78 deg of the surface's */
+#define SQ_PI 3.14159265358979323846
 #define BARRIER_START 0.5 /* fold margin (cosine) below which the barrier acts */
 
 static void sub3(const double *a, const double *b, double *o) { o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2]; }
@@ -51,17 +52,27 @@ static double untangle_term(const double *a, const double *b, const double *d, c
 
 int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *const x[4], double *r)
 {
-    double e[4][3], len[4], mean = 0.0;
+    /* Scale-invariant residuals: signed corner angles (radians, 0 at 90
+     * degrees, in (0, 360) degrees measured around the surface normal, so a
+     * reflex corner is penalized and the gradient does not vanish at 0 or
+     * 180 degrees as a cosine's does) and log(edge length / geometric mean
+     * of the quad's four edges) (unbounded as an edge collapses). */
+    double e[4][3], len[4], lmean = 0.0;
+    const double *n = c->ref_normal + 3 * (size_t)q;
     for (int k = 0; k < 4; k++) {
         sub3(x[(k + 1) % 4], x[k], e[k]);
         len[k] = sqrt(dot3(e[k], e[k]));
         if (!(len[k] > 0.0)) return 0;
-        mean += 0.25 * len[k];
+        lmean += 0.25 * log(len[k]);
     }
     for (int k = 0; k < 4; k++) {
-        const double *a = e[k], *b = e[(k + 3) % 4]; /* corner k: a and -b */
-        r[k] = c->wa * (-dot3(a, b) / (len[k] * len[(k + 3) % 4]));
-        r[4 + k] = c->wl * (len[k] - mean) / mean;
+        const double *u = e[k], *p = e[(k + 3) % 4]; /* corner k: from u to -p */
+        double w[3] = {-p[0], -p[1], -p[2]}, cr[3];
+        cross3(u, w, cr);
+        double th = atan2(dot3(cr, n), dot3(u, w));
+        if (th < 0.0) th += 2.0 * SQ_PI;
+        r[k] = c->wa * (th - 0.5 * SQ_PI);
+        r[4 + k] = c->wl * (log(len[k]) - lmean);
     }
     double b;
     if (!barrier_term(sq_quad_fold_margin(x[0], x[1], x[2], x[3]), c->threshold[q], &b)) return 0;
@@ -98,6 +109,10 @@ static void tangent_position(const sq_smooth_ctx *c, uint32_t v, const double *a
 int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, double *r)
 {
     const sq_smooth_ctx *c = user;
+    if (q >= c->nq) { /* damping block of vertex q - nq */
+        r[0] = c->damping * param[0][0], r[1] = c->damping * param[0][1];
+        return 1;
+    }
     double xs[4][3];
     const double *x[4];
     for (int k = 0; k < 4; k++) {

@@ -19,6 +19,7 @@ typedef struct sq_smooth_ctx {
     const double *threshold; /* nq: feasible iff fold margin >= threshold       */
     const uint32_t *con_quad;/* constraint block -> quad                        */
     double wa, wl, wu, wb;
+    double damping;          /* weight of the per-vertex damping residuals      */
     long fold_rejections;    /* counted by the feasibility callback             */
 } sq_smooth_ctx;
 
@@ -32,8 +33,10 @@ int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *c
 /* Sum of squared residuals of all quads at positions pos (3*nv). */
 double sq_smooth_energy(const sq_smooth_ctx *c, const double *pos);
 
-/* Callbacks for sq_nlls_solve: parameter block i is vertex i's tangent
- * offset (a, b): position base + h (a t1 + b t2). */
+/* Callbacks for sq_nlls_solve: residual blocks 0..nq-1 are the quads;
+ * blocks nq..nq+nv-1 (when damping > 0) are damping * (a, b) of vertex
+ * r - nq (a damped, shorter step on a retry). Parameter block i is vertex
+ * i's tangent offset (a, b): position base + h (a t1 + b t2). */
 int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, double *r);
 int sq_smooth_feasible_cb(void *user, uint32_t con, const double *const *param);
 

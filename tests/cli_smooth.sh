@@ -42,6 +42,9 @@ print('%s: mean|a-90| %.3f -> %.3f deg, min sJ %.3f -> %.3f, edge ratio mean %.3
 assert a['passed'] and a['degeneracy']['folded'] == 0
 assert qa['angle_mean_abs_dev_from_90_deg'] < qb['angle_mean_abs_dev_from_90_deg']
 assert dist <= 1e-9, dist
+if b['degeneracy']['folded'] == 0:  # acceptance test (docs/smooth.md): no measure worse
+    assert qa['scaled_jacobian_min'] >= qb['scaled_jacobian_min']
+    assert qa['edge_ratio_mean'] <= qb['edge_ratio_mean']
 assert s['ok'] and s['after']['folded'] == 0 and s['after']['max_surface_distance_rel'] <= 1e-9
 for k in ('V_referenced', 'E', 'chi'):
     assert a['topology'][k] == b['topology'][k], k
