@@ -21,6 +21,8 @@
 
 #include <cmocka.h>
 
+#include "sq_test_random.h"
+
 #include "sq_domain.h"
 #include "sq_domain_genus1.h"
 #include "sq_domain_internal.h"
@@ -28,24 +30,6 @@
 #include "sq_padding.h"
 #include "sq_pattern.h"
 #include "sq_valence_order.h"
-
-static uint64_t rng_state;
-
-static uint64_t rng(void) /* splitmix64 */
-{
-    uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-static uint32_t rnd(uint32_t n) { return (uint32_t)(rng() % n); }
-
-static int long_mode(void)
-{
-    const char *s = getenv("SQ_LONG_TESTS");
-    return s && *s && strcmp(s, "0");
-}
 
 #if defined(__SANITIZE_ADDRESS__)
 #define SANITIZED 1
