@@ -75,6 +75,13 @@ v=3,5,5,5,5,5,5,5,5,5
   && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["slide"]["length"] > 0' "$tmp/r1.json" \
   && python3 "$referee" --topology-only --genus 2 --valences $v "$tmp/r1.closed.obj" >/dev/null \
   && ok || bad "slide on a rank-1 pattern"
+for seed in 1 2 3; do
+  "$bin" domain --genus 4 --valences 3,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5 --seed $seed \
+    -o "$tmp/s$seed" >/dev/null \
+    && python3 "$referee" --topology-only --genus 4 \
+      --valences 3,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5,5 "$tmp/s$seed.closed.obj" >/dev/null \
+    && ok || bad "--seed $seed"
+done
 "$bin" domain --genus 1 --valences 3,5 -o "$tmp/t35" >/dev/null 2>"$tmp/t35.err"
 [ $? -eq 1 ] && grep -q Jucovic "$tmp/t35.err" && [ ! -e "$tmp/t35.quad.obj" ] && ok || bad "torus 3-5"
 "$bin" domain --genus 2 --valences 3,5,5 -o "$tmp/gb" >/dev/null 2>"$tmp/gb.err"
