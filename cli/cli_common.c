@@ -20,6 +20,15 @@ void sq_json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
+void sq_json_error(sq_status code, const char *stage, const char *message)
+{
+    printf("\"error\": {\"code\": \"%s\", \"stage\": ", sq_status_name(code));
+    sq_json_string(stdout, stage);
+    printf(", \"message\": ");
+    sq_json_string(stdout, message);
+    printf("}");
+}
+
 double sq_now(void)
 {
     struct timespec ts;

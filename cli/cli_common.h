@@ -24,6 +24,10 @@ int sq_cmd_cones(int argc, char **argv);
 int sq_cmd_smooth(int argc, char **argv);
 int sq_cmd_subdiv(int argc, char **argv);
 
+/* Writes the `"error": {"code", "stage", "message"}` member of a --json
+ * report (no leading comma or newline) to stdout. */
+void sq_json_error(sq_status code, const char *stage, const char *message);
+
 /* Writes s as a JSON string literal (with quotes) to f. */
 void sq_json_string(FILE *f, const char *s);
 

@@ -146,10 +146,8 @@ static void print_json(const check_report *r)
         printf("}");
     }
     if (r->err.code != SQ_OK) {
-        printf(",\n  \"error\": {\"code\": \"%s\", \"stage\": \"%s\", \"message\": ",
-               sq_status_name(r->err.code), r->err_stage);
-        sq_json_string(stdout, r->err.msg);
-        printf("}");
+        printf(",\n  ");
+        sq_json_error(r->err.code, r->err_stage, r->err.msg);
     }
     printf("\n}\n");
 }

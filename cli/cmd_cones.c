@@ -182,10 +182,8 @@ static void print_json(const cones_run *r)
                1e3 * s->field.t_factor, 1e3 * s->field.t_solve, 1e3 * s->t_indices,
                1e3 * s->t_total, 1e3 * r->t_write);
     } else {
-        printf(",\n  \"error\": {\"code\": \"%s\", \"stage\": \"%s\", \"message\": ",
-               sq_status_name(r->err.code), r->err_stage);
-        sq_json_string(stdout, r->err.msg);
-        printf("}");
+        printf(",\n  ");
+        sq_json_error(r->err.code, r->err_stage, r->err.msg);
     }
     printf("\n}\n");
 }

@@ -426,11 +426,9 @@ fail:
     for (int i = 0; i < written; i++) unlink(paths[i]);
     fprintf(stderr, "seamquad domain: error (%s): %s\n", stage, err.msg);
     if (json) {
-        printf("{\n  \"ok\": false,\n  \"error\": {\"code\": \"%s\", \"stage\": \"%s\", "
-               "\"message\": ",
-               sq_status_name(err.code), stage);
-        sq_json_string(stdout, err.msg);
-        printf("}\n}\n");
+        printf("{\n  \"ok\": false,\n  ");
+        sq_json_error(err.code, stage, err.msg);
+        printf("\n}\n");
     }
     /* the command line was checked above: an argument error from the
      * library here is about the input's content (pattern, cones, genus) */

@@ -220,9 +220,8 @@ int sq_cmd_smooth(int argc, char **argv)
         }
         printf("  \"total_s\": %.3f", total);
         if (st != SQ_OK) {
-            printf(",\n  \"error\": {\"code\": \"%s\", \"stage\": \"%s\", \"message\": ", sq_status_name(st), stage);
-            sq_json_string(stdout, err.msg);
-            printf("}");
+            printf(",\n  ");
+            sq_json_error(st, stage, err.msg);
         }
         printf("\n}\n");
     } else if (ran) {

@@ -236,10 +236,8 @@ static void print_json(const subdiv_run *r)
                1e3 * r->t_read, 1e3 * r->t_refine, 1e3 * r->t_build, 1e3 * r->t_seams,
                1e3 * r->t_limit, 1e3 * r->t_step, 1e3 * r->t_iges);
     } else {
-        printf(",\n  \"error\": {\"code\": \"%s\", \"stage\": \"%s\", \"message\": ",
-               sq_status_name(r->err.code), r->err_stage);
-        sq_json_string(stdout, r->err.msg);
-        printf("}");
+        printf(",\n  ");
+        sq_json_error(r->err.code, r->err_stage, r->err.msg);
     }
     printf("\n}\n");
 }
