@@ -14,7 +14,6 @@
 
 #define CONES_HIST 64
 
-int sq_cmd_cones(int argc, char **argv);
 
 static void help(FILE *f)
 {

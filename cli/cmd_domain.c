@@ -349,7 +349,7 @@ int sq_cmd_domain(int argc, char **argv)
     written = 2;
     if (write_sides(&D, paths[2], &err)) goto fail;
     written = 3;
-    if (svg && sq_domain_write_svg(&D, paths[3], &err)) goto fail;
+    if (svg && sq_domain_write_svg(&D, xy, paths[3], &err)) goto fail;
     written = svg ? 4 : 3;
     if (omega) {
         if (!svg) { /* keep paths[] dense for the listing and the cleanup */

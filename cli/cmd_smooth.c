@@ -10,7 +10,6 @@
 #include "sq_mesh.h"
 #include "sq_smooth.h"
 
-int sq_cmd_smooth(int argc, char **argv);
 
 static void help(FILE *f)
 {

@@ -13,7 +13,6 @@
 #include "sq_mesh.h"
 #include "sq_subdiv.h"
 
-int sq_cmd_subdiv(int argc, char **argv);
 
 static void help(FILE *f)
 {

@@ -64,22 +64,25 @@ static void dot(FILE *f, const double *xy, uint32_t v, double ox, double r, cons
             r, fill);
 }
 
-sq_status sq_domain_write_svg(const sq_domain *D, const char *path, sq_error *err)
+sq_status sq_domain_write_svg(const sq_domain *D, const double *qxy_given, const char *path,
+                              sq_error *err)
 {
     const sq_metapolygon *P = &D->meta, *Q = &D->quads;
     double *pxy = malloc(2 * (size_t)P->nv * sizeof *pxy);
-    double *qxy = malloc(2 * (size_t)Q->nv * sizeof *qxy);
+    double *qxy_own = qxy_given ? NULL : malloc(2 * (size_t)Q->nv * sizeof *qxy_own);
+    const double *qxy = qxy_given ? qxy_given : qxy_own;
     uint32_t *pair = malloc((size_t)D->k * sizeof *pair);
     if (!pxy || !qxy || !pair) {
-        free(pxy), free(qxy), free(pair);
+        free(pxy), free(qxy_own), free(pair);
         return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
     }
     sq_status st = sq_disk_layout_tutte(P, SQ_NONE, pxy, err);
-    if (st == SQ_OK) st = sq_disk_layout_tutte(Q, Q->v_he[D->corner_vert[0]], qxy, err);
+    if (st == SQ_OK && qxy_own)
+        st = sq_disk_layout_tutte(Q, Q->v_he[D->corner_vert[0]], qxy_own, err);
     sq_atomic_file af;
     if (st == SQ_OK) st = sq_atomic_open(&af, path, err);
     if (st) {
-        free(pxy), free(qxy), free(pair);
+        free(pxy), free(qxy_own), free(pair);
         return st;
     }
     FILE *f = af.fp;
@@ -153,6 +156,6 @@ sq_status sq_domain_write_svg(const sq_domain *D, const char *path, sq_error *er
                "colour per pair; yellow: corners; dots: cones; green: padding</text>\n",
             MARGIN, H - 14);
     fprintf(f, "</svg>\n");
-    free(pxy), free(qxy), free(pair);
+    free(pxy), free(qxy_own), free(pair);
     return sq_atomic_commit(&af, err);
 }

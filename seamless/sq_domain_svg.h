@@ -9,8 +9,11 @@
 extern "C" {
 #endif
 
-/* Writes the metapolygon and the padded domain side by side (atomic). */
-sq_status sq_domain_write_svg(const sq_domain *D, const char *path, sq_error *err);
+/* Writes the metapolygon and the padded domain side by side (atomic).
+ * qxy: the Tutte layout of D->quads (2 per vertex, boundary starting at
+ * corner 0, as sq_disk_layout_tutte gives it), or NULL to compute it. */
+sq_status sq_domain_write_svg(const sq_domain *D, const double *qxy, const char *path,
+                              sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -6,25 +6,8 @@
 #include <string.h>
 
 #include "sq_omega.h"
+#include "sq_omega_grid.h"
 
-static const int64_t DX[4] = {1, 0, -1, 0}, DY[4] = {0, 1, 0, -1};
-
-static void rot(uint32_t r, int64_t x, int64_t y, int64_t *ox, int64_t *oy)
-{
-    switch (r & 3u) {
-    case 0: *ox = x, *oy = y; break;
-    case 1: *ox = -y, *oy = x; break;
-    case 2: *ox = -x, *oy = -y; break;
-    default: *ox = y, *oy = -x; break;
-    }
-}
-
-static uint32_t dir_of(int64_t dx, int64_t dy)
-{
-    for (uint32_t d = 0; d < 4; d++)
-        if (dx == DX[d] && dy == DY[d]) return d;
-    return 4;
-}
 
 #define FAIL(...)                                                                                  \
     do {                                                                                           \
