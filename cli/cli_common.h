@@ -20,6 +20,7 @@ enum {
 
 int sq_cmd_check(int argc, char **argv);
 int sq_cmd_domain(int argc, char **argv);
+int sq_cmd_param(int argc, char **argv);
 int sq_cmd_cones(int argc, char **argv);
 int sq_cmd_smooth(int argc, char **argv);
 int sq_cmd_subdiv(int argc, char **argv);

@@ -14,7 +14,7 @@ static const subcommand commands[] = {
     {"check", sq_cmd_check, "validate a mesh and its cones: can seamquad process them?"},
     {"cones", sq_cmd_cones, "compute cones from a smooth cross field"},
     {"domain", sq_cmd_domain, "build the combinatorial seamless domain of a cone set"},
-    {"param", NULL, "seamless, locally injective parametrization of a mesh (planned)"},
+    {"param", sq_cmd_param, "seamless, locally injective parametrization of a mesh with its cones"},
     {"quantize", NULL, "optimize distortion, then quantize to an integer grid (planned)"},
     {"extract", NULL, "extract the closed pure-quad mesh of a parametrization (planned)"},
     {"smooth", sq_cmd_smooth, "smooth a quad mesh on the input surface with Ceres"},

@@ -6,7 +6,11 @@
  * sides at every corner whose vertex is a branch point (cut degree != 2).
  * Side i runs from corner i to corner i+1; its partner is the side made of
  * the twins of its halfedges in reverse order (the other side of the same
- * branch), which is the gluing convention of sq_pattern.h. */
+ * branch), which is the gluing convention of sq_pattern.h. Branch points
+ * may have degree 1 (genus 0: one path), 3 (genus 1: theta graph; one
+ * corner per class is then marked straight) or 4 (genus >= 1 hole chain).
+ * The word is counterclockwise; the domain Q's is clockwise
+ * (sq_pattern_reversed, sq_cut_graph_domain_offset). */
 #include "sq_cut_graph.h"
 #include "sq_cut_internal.h"
 
@@ -109,6 +113,30 @@ sq_status sq_cut_boundary_word(const sq_mesh *m, sq_cut_graph *G, sq_error *err)
                 goto done;
             }
         G->pattern.partner[i] = j;
+    }
+    /* Degree-3 branch points (the genus-1 theta graph, sq_cut_low_genus.c)
+     * have three corners; the domain Q gives each such class two right
+     * corners and one straight one (docs/domain.md, "Genus 1"). On the
+     * surface any corner can take the straight angle: mark the first corner
+     * of each class. Degree-1 (genus 0) and degree-4 points keep right
+     * corners only. */
+    if (k > 0) {
+        uint32_t *cls = malloc((size_t)k * sizeof *cls);
+        uint8_t *done_cls = calloc(k, 1);
+        if (!cls || !done_cls) {
+            free(cls);
+            free(done_cls);
+            st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (boundary)");
+            goto done;
+        }
+        sq_pattern_corner_classes(&G->pattern, cls);
+        for (uint32_t i = 0; i < k; ++i)
+            if (deg[G->corner_vertex[i]] == 3 && !done_cls[cls[i]]) {
+                done_cls[cls[i]] = 1;
+                G->pattern.straight[i] = 1;
+            }
+        free(cls);
+        free(done_cls);
     }
     G->rank = sq_pattern_rank(&G->pattern);
 done:

@@ -149,9 +149,62 @@ sq_status sq_cut_boundary_word(const sq_mesh *m, sq_cut_graph *G, sq_error *err)
  * cut vertices of degree 2; 2g-1 branch points and 4g-2 branches; the cut
  * surface (vertices duplicated along the cut) is one disk: Euler
  * characteristic 1, one boundary loop; the pattern is valid with genus g
- * and corner classes of 4 corners at one branch vertex each. */
+ * and corner classes of 4 corners at one branch vertex each. Genus 0 and
+ * 1 also accept the graphs of sq_cut_graph_build_low_genus: two degree-1
+ * points and one branch (genus 0, k = 2; pairing and Euler characteristic
+ * only, see sq_cut_graph.c), two degree-3 points and three branches
+ * (genus 1, k = 6); classes then have as many corners as the degree. */
 sq_status sq_cut_graph_check(const sq_mesh *m, const uint8_t *cone, const sq_cut_graph *G,
                              sq_error *err);
+
+/* Cut graphs for every genus, with the genus 0 and 1 graphs matching the
+ * domain Q of sq_domain_build (seed 6.5, seed 6.2, seed 7 "Low Genus
+ * Special Cases"; docs/cut_graph.md "Genus 0 and 1"):
+ *  - genus 0: one shortest path of at least 2 edges between two non-cone
+ *    vertices through non-cone vertices (Dijkstra, Euclidean lengths); its
+ *    ends are degree-1 branch points; k = 2, partner {1, 0} (Q: the sphere
+ *    cut along one edge);
+ *  - genus 1 with cones (some cone[v] != 0): the theta graph, a shortest
+ *    cone-free non-separating loop L (sq_cut_loops_find) and a shortest
+ *    cone-free path P from the + side of L to the - side with ends x != y
+ *    on L (interior vertices off L and off cones); x, y have degree 3,
+ *    three branches, k = 6, word a b c a^-1 b^-1 c^-1 (partner i + 3 mod
+ *    6), the first corner of each class marked straight in
+ *    pattern.straight (Q's genus-1 pattern: partner {3, 4, 5, 0, 1, 2},
+ *    one straight corner per class);
+ *  - genus 1 without cones, genus >= 2: sq_cut_graph_build (two-loop graph
+ *    a b a^-1 b^-1, resp. the hole chain).
+ * Every field of out is filled; out->tries = 1 for genus 0 and 1 with
+ * cones. Cones walling a path off: SQ_ERR_ARGUMENT, stats->failure =
+ * SQ_CUT_FAIL_NEEDS_SPLIT, stats->where a cone-cone edge (SQ_NONE if none).
+ * A negative genus (not a closed connected orientable surface):
+ * SQ_ERR_ARGUMENT. stats optional. */
+sq_status sq_cut_graph_build_low_genus(const sq_mesh *m, const uint8_t *cone,
+                                       const sq_cut_options *opt, sq_cut_graph *out,
+                                       sq_cut_stats *stats, sq_error *err);
+
+/* Side correspondence between the cut graph and the domain Q.
+ *
+ * Orientation: G->pattern is read with the cut disk on the LEFT
+ * (counterclockwise); Q's sides in sq_domain follow Q's boundary halfedges,
+ * with the disk on the RIGHT (clockwise). Read clockwise, the surface's word
+ * is sq_pattern_reversed(&G->pattern): clockwise side j = counterclockwise
+ * side k-1-j traversed backward, clockwise corner j = counterclockwise
+ * corner (k-j) mod k.
+ *
+ * Finds r in 0..k-1 such that Q side j corresponds to clockwise surface
+ * side (j + r) mod k (= G side (2k - 1 - j - r) mod k, walked backward;
+ * Q corner j = clockwise corner (j + r) mod k = G corner (2k - j - r) mod
+ * k) with exactly Q's pairing: cw.partner[(j + r) % k] == (q_pattern->
+ * partner[j] + r) % k for all j. Straight corners do not constrain the
+ * match (on the surface any corner may take any angle); among matching r
+ * the smallest one that also maps straight flags onto straight flags is
+ * returned if there is one, else the smallest matching r. For genus >= 2
+ * with q_pattern = sq_pattern_reversed(&G->pattern) (what the domain was
+ * built with), r = 0. SQ_ERR_ARGUMENT if the side counts differ or no r
+ * matches. */
+sq_status sq_cut_graph_domain_offset(const sq_cut_graph *G, const sq_pattern *q_pattern,
+                                     uint32_t *offset, sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -254,6 +254,60 @@ static void relax(const sq_metapolygon *Q, const uint8_t *on_bnd, uint32_t *dist
     }
 }
 
+/* Shortest paths from the tree (in_tree) over interior vertices, and among
+ * them the ones with the fewest turns: every turn of the tree gives Omega a
+ * reflex corner, hence a chord of sq_omega_cells, and a grid BFS alone
+ * returns staircases. Breadth-first by layers of equal distance; the states
+ * are halfedges h entering head(h) on a shortest path, with st_turn[h] the
+ * fewest turns of a shortest path ending with h and st_par[h] the state
+ * before it (SQ_NONE: h leaves the tree). A path goes straight through a
+ * regular interior vertex when it leaves by the edge opposite the one it
+ * came in by; at the tree itself no turn is counted. Per vertex: dist
+ * (UINT32_MAX - 1 if unreachable), vturn and vbest (the best state entering
+ * it; ties: the first found). */
+static void straight_paths(const sq_metapolygon *Q, const uint8_t *on_bnd,
+                           const uint8_t *in_tree, uint32_t *dist, uint32_t *vturn,
+                           uint32_t *vbest, uint32_t *st_turn, uint32_t *st_par, uint32_t *queue)
+{
+    uint32_t nq = 0;
+    for (uint32_t v = 0; v < Q->nv; v++) {
+        dist[v] = in_tree[v] ? 0 : UINT32_MAX - 1;
+        vturn[v] = UINT32_MAX;
+        vbest[v] = SQ_NONE;
+        if (in_tree[v]) queue[nq++] = v;
+    }
+    for (uint32_t h = 0; h < Q->nh; h++) st_turn[h] = UINT32_MAX;
+    /* FIFO order visits the layers in turn, so every state entering u is
+     * final before u's own edges are relaxed */
+    for (uint32_t qi = 0; qi < nq; qi++) {
+        uint32_t u = queue[qi], h0 = Q->v_he[u], h = h0;
+        int regular = !on_bnd[u] && Q->v_nface[u] == 4;
+        do {
+            uint32_t w = head(Q, h);
+            if (!on_bnd[w] && dist[w] >= dist[u] + 1) {
+                if (dist[w] > dist[u] + 1) {
+                    dist[w] = dist[u] + 1;
+                    queue[nq++] = w;
+                }
+                uint32_t t = 0, p = SQ_NONE;
+                if (dist[u] > 0) {
+                    t = vturn[u] + 1;
+                    p = vbest[u];
+                    if (regular) {
+                        /* the state entering u in h's direction */
+                        uint32_t a = Q->he_twin[Q->he_next[Q->he_twin[Q->he_next[Q->he_twin[h]]]]];
+                        if (st_turn[a] < t) t = st_turn[a], p = a;
+                    }
+                }
+                st_turn[h] = t;
+                st_par[h] = p;
+                if (t < vturn[w]) vturn[w] = t, vbest[w] = h;
+            }
+            h = Q->he_next[Q->he_twin[h]];
+        } while (h != h0);
+    }
+}
+
 sq_status sq_cone_tree_shortest(const sq_metapolygon *Q, uint32_t root, sq_cone_tree *T,
                                 sq_error *err)
 {
@@ -268,8 +322,14 @@ sq_status sq_cone_tree_shortest(const sq_metapolygon *Q, uint32_t root, sq_cone_
     uint32_t *queue = malloc(nv1 * sizeof *queue);
     uint32_t *cones = malloc(nv1 * sizeof *cones);
     uint32_t *edges = malloc(nv1 * sizeof *edges);
+    size_t nh1 = Q->nh ? Q->nh : 1;
+    uint32_t *vturn = malloc(nv1 * sizeof *vturn);
+    uint32_t *vbest = malloc(nv1 * sizeof *vbest);
+    uint32_t *st_turn = malloc(nh1 * sizeof *st_turn);
+    uint32_t *st_par = malloc(nh1 * sizeof *st_par);
     sq_status st = SQ_OK;
-    if (!on_bnd || !in_tree || !dist || !par || !queue || !cones || !edges) {
+    if (!on_bnd || !in_tree || !dist || !par || !queue || !cones || !edges || !vturn || !vbest ||
+        !st_turn || !st_par) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -321,14 +381,13 @@ sq_status sq_cone_tree_shortest(const sq_metapolygon *Q, uint32_t root, sq_cone_
         }
     }
 
-    /* seed 9.4: join the nearest cone to the tree by a shortest path */
-    for (uint32_t v = 0; v < Q->nv; v++) dist[v] = UINT32_MAX - 1;
-    dist[root] = 0;
+    /* seed 9.4: join the nearest cone to the tree by a shortest path; among
+     * shortest paths the one with the fewest turns (straight_paths,
+     * recomputed from the whole tree after each join) */
     in_tree[root] = 1;
-    queue[0] = root;
-    relax(Q, on_bnd, dist, par, queue, 1);
     uint32_t ne = 0, left = nc;
     while (left) {
+        straight_paths(Q, on_bnd, in_tree, dist, vturn, vbest, st_turn, st_par, queue);
         uint32_t best = SQ_NONE;
         for (uint32_t c = 0; c < nc; c++)
             if (!in_tree[cones[c]] && (best == SQ_NONE || dist[cones[c]] < dist[best]))
@@ -340,17 +399,17 @@ sq_status sq_cone_tree_shortest(const sq_metapolygon *Q, uint32_t root, sq_cone_
                               best, Q->v_nface[best], root);
             goto done;
         }
-        uint32_t nq = 0;
-        for (uint32_t w = best; !in_tree[w];) {
-            uint32_t h = par[w];
+        for (uint32_t w = best, h = vbest[best]; !in_tree[w]; h = st_par[h]) {
+            if (h == SQ_NONE) {
+                st = sq_error_set(err, SQ_ERR_INTERNAL,
+                                  "cone tree: broken shortest path at vertex %u of Q", w);
+                goto done;
+            }
             edges[ne++] = h;
             in_tree[w] = 1;
             if (is_cone(Q, on_bnd, w)) left--;
-            dist[w] = 0;
-            queue[nq++] = w;
             w = Q->he_vert[h];
         }
-        relax(Q, on_bnd, dist, par, queue, nq);
     }
     st = sq_cone_tree_from_edges(Q, root, edges, ne, T, err);
 done:
@@ -361,5 +420,9 @@ done:
     free(queue);
     free(cones);
     free(edges);
+    free(vturn);
+    free(vbest);
+    free(st_turn);
+    free(st_par);
     return st;
 }

@@ -49,6 +49,20 @@ sq_status sq_pattern_copy(sq_pattern *dst, const sq_pattern *src, sq_error *err)
     return SQ_OK;
 }
 
+sq_status sq_pattern_reversed(const sq_pattern *in, sq_pattern *out, sq_error *err)
+{
+    const uint32_t k = in->k;
+    sq_status st = sq_pattern_alloc(out, k, err);
+    if (st != SQ_OK)
+        return st;
+    for (uint32_t j = 0; j < k; ++j) {
+        const uint32_t p = in->partner[k - 1 - j];
+        out->partner[j] = p < k ? k - 1 - p : SQ_PAT_NONE;
+        out->straight[j] = in->straight ? in->straight[(k - j) % k] : 0;
+    }
+    return SQ_OK;
+}
+
 /* ---- corner classes ---------------------------------------------------- */
 
 /* Fills class_of (k entries) with class ids numbered by first corner;

@@ -59,6 +59,15 @@ sq_status sq_pattern_alloc(sq_pattern *pat, uint32_t k, sq_error *err);
 /* Deep copy. dst must be initialized. */
 sq_status sq_pattern_copy(sq_pattern *dst, const sq_pattern *src, sq_error *err);
 
+/* The same boundary word read the other way round (clockwise instead of
+ * counterclockwise, or back): side j of out is side k-1-j of in traversed
+ * backward, so out->partner[j] = k-1-in->partner[k-1-j], and corner j of
+ * out is corner (k-j) mod k of in: out->straight[j] = in->straight[(k-j)
+ * mod k]. Validity, genus and rank are unchanged. out must be initialized
+ * and differ from in. (sq_cut_graph.h: the surface's word runs with the
+ * disk on the left, the domain Q's sides with the disk on the right.) */
+sq_status sq_pattern_reversed(const sq_pattern *in, sq_pattern *out, sq_error *err);
+
 /* Corner classes after gluing (union-find over the rules corner i ~ corner
  * partner[i]+1, corner i+1 ~ corner partner[i]). class_of (k entries,
  * optional) receives class ids 0..V-1 numbered by first corner; returns V.

@@ -32,7 +32,7 @@ void sq_smooth_options_default(sq_smooth_options *o)
     o->solver_iterations = 20;
     o->untangle_iterations = 30;
     o->angle_weight = 1.0;
-    o->length_weight = 0.5;
+    o->length_weight = 1.0;
     o->untangle_weight = 4.0;
     o->barrier_weight = 0.1;
     o->fold_margin = 0.01;
@@ -55,7 +55,7 @@ typedef struct smoother {
     const uint32_t *quads;
     double *pos;                /* 3*nv, caller's array: the accepted state  */
     uint32_t *vtri;             /* nv: surface triangle of each vertex       */
-    double *frame, *h, *ref_normal, *threshold, *x, *cand, *margin;
+    double *frame, *h, *ref_normal, *threshold, *x, *cand, *margin, *target, *ideal_log;
     uint32_t *cand_tri, *con_quad, *res_off, *res_param, *res_dim;
     unsigned char *untangle;
     sq_smooth_ctx ctx;
@@ -332,12 +332,14 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     s.res_param = malloc((4 * (size_t)nq + nv) * sizeof(uint32_t));
     s.res_dim = malloc(((size_t)nq + nv) * sizeof(uint32_t));
     s.untangle = calloc(nq, 1);
+    s.target = malloc(4 * (size_t)nq * sizeof(double));
+    s.ideal_log = malloc(4 * (size_t)nq * sizeof(double));
     double *vnormal = calloc(3 * (size_t)snv, sizeof(double));
     s.vbary = malloc(3 * (size_t)nv * sizeof(double));
     s.cand_bary = malloc(3 * (size_t)nv * sizeof(double));
     if (!tri_normal || !base || !s.vtri || !s.frame || !s.h || !s.ref_normal || !s.threshold || !s.margin ||
         !s.x || !s.cand || !s.cand_tri || !s.con_quad || !s.res_off || !s.res_param || !s.res_dim ||
-        !s.untangle || !vnormal || !s.vbary || !s.cand_bary) {
+        !s.untangle || !s.target || !s.ideal_log || !vnormal || !s.vbary || !s.cand_bary) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory for %u vertices", nv);
         goto done;
     }
@@ -359,9 +361,10 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         for (int j = 0; j < 3; j++) /* area weight: the unnormalized normal */
             for (int k = 0; k < 3; k++) vnormal[3 * (size_t)stri[3 * (size_t)t + j] + k] += n[k];
     }
+    sq_smooth_targets(nv, nq, quads, s.target, s.ideal_log);
     s.ctx = (sq_smooth_ctx){nv, nq, quads, base, s.frame, s.h, s.ref_normal, s.untangle, s.threshold,
-                            s.con_quad, opt->angle_weight, opt->length_weight, opt->untangle_weight,
-                            opt->barrier_weight, 0.0, 0};
+                            NULL, NULL, s.con_quad, opt->angle_weight, opt->length_weight,
+                            opt->untangle_weight, opt->barrier_weight, 0.0, 0};
 
     sq_quad_quality_compute(pos, nq, quads, &stats->before);
     stats->dist_before_rel = max_dist_rel(&s.tree, nv, pos, diag);
@@ -408,7 +411,10 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     }
     sq_quad_quality_compute(pos, nq, quads, &stats->untangled);
 
-    /* 3. smooth: the fold thresholds are fixed from here on */
+    /* 3. smooth: the fold thresholds are fixed from here on; the angle and
+     * length targets of docs/smooth.md "Targets" (untangling aims at 90
+     * degrees and equal edges: measured faster on the elephant) */
+    s.ctx.target = s.target, s.ctx.ideal_log = s.ideal_log;
     memset(s.untangle, 0, nq);
     compute_margins(&s, pos);
     for (uint32_t q = 0; q < nq; q++) s.threshold[q] = fmin(opt->fold_margin, 0.5 * s.margin[q]);
@@ -468,6 +474,6 @@ done:
     free(tri_normal), free(base), free(s.vtri), free(s.frame), free(s.h), free(s.ref_normal);
     free(s.threshold), free(s.margin), free(s.x), free(s.cand), free(s.cand_tri), free(s.con_quad);
     free(s.res_off), free(s.res_param), free(s.res_dim), free(s.untangle);
-    free(vnormal), free(s.vbary), free(s.cand_bary);
+    free(vnormal), free(s.vbary), free(s.cand_bary), free(s.target), free(s.ideal_log);
     return st;
 }

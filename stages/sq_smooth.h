@@ -43,7 +43,7 @@ typedef struct sq_smooth_options {
     int solver_iterations;   /* Levenberg-Marquardt iterations per outer one (20) */
     int untangle_iterations; /* outer iterations allowed for untangling (30)      */
     double angle_weight;     /* weight of the corner-angle residuals (1)          */
-    double length_weight;    /* weight of the edge-length residuals (0.5)         */
+    double length_weight;    /* weight of the edge-length residuals (1)           */
     double untangle_weight;  /* weight of the untangling residuals (4)            */
     double barrier_weight;   /* weight of the fold-margin log barrier (0.1)       */
     double fold_margin;      /* keep every quad's fold margin >= min(this, half   */

@@ -5,6 +5,7 @@
  * log barrier keeping its fold margin above its threshold. */
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 
 #include "sq_smooth_internal.h"
 
@@ -71,8 +72,8 @@ int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *c
         cross3(u, w, cr);
         double th = atan2(dot3(cr, n), dot3(u, w));
         if (th < 0.0) th += 2.0 * SQ_PI;
-        r[k] = c->wa * (th - 0.5 * SQ_PI);
-        r[4 + k] = c->wl * (log(len[k]) - lmean);
+        r[k] = c->wa * (th - (c->target ? c->target[4 * (size_t)q + k] : 0.5 * SQ_PI));
+        r[4 + k] = c->wl * (log(len[k]) - lmean - (c->ideal_log ? c->ideal_log[4 * (size_t)q + k] : 0.0));
     }
     double b;
     if (!barrier_term(sq_quad_fold_margin(x[0], x[1], x[2], x[3]), c->threshold[q], &b)) return 0;
@@ -131,4 +132,55 @@ int sq_smooth_feasible_cb(void *user, uint32_t con, const double *const *param)
     if (sq_quad_fold_margin(xs[0], xs[1], xs[2], xs[3]) >= c->threshold[q]) return 1;
     c->fold_rejections++;
     return 0;
+}
+
+/* Ideal edge lengths of a planar quad with interior angles a[0..3] (sum
+ * 2 pi): edge k runs from corner k to k+1 with direction phi_k, phi_{k+1} =
+ * phi_k + pi - a[k+1]. Closing the polygon, sum_k l_k (cos phi_k, sin
+ * phi_k) = 0, is 2 linear equations in the 4 lengths; the lengths closest
+ * to (1, 1, 1, 1) are l = 1 - D^T (D D^T)^-1 D 1 (D: the 2x4 direction
+ * matrix). A square gives (1, 1, 1, 1); the split's kite (60, 90, 120, 90
+ * degrees) gives edges in ratio sqrt(3). Returns 0 when the shape is
+ * unusable (D D^T singular or a length below 0.2). */
+static int ideal_lengths(const double a[4], double l[4])
+{
+    double phi = 0.0, D[2][4];
+    for (int k = 0; k < 4; k++) {
+        D[0][k] = cos(phi), D[1][k] = sin(phi);
+        phi += SQ_PI - a[(k + 1) % 4];
+    }
+    double M00 = 0, M01 = 0, M11 = 0, d0 = 0, d1 = 0;
+    for (int k = 0; k < 4; k++) {
+        M00 += D[0][k] * D[0][k], M01 += D[0][k] * D[1][k], M11 += D[1][k] * D[1][k];
+        d0 += D[0][k], d1 += D[1][k];
+    }
+    double det = M00 * M11 - M01 * M01;
+    if (!(det > 1e-9)) return 0;
+    double y0 = (M11 * d0 - M01 * d1) / det, y1 = (M00 * d1 - M01 * d0) / det;
+    for (int k = 0; k < 4; k++) {
+        l[k] = 1.0 - (D[0][k] * y0 + D[1][k] * y1);
+        if (!(l[k] >= 0.2)) return 0;
+    }
+    return 1;
+}
+
+void sq_smooth_targets(uint32_t nv, uint32_t nq, const uint32_t *quads, double *target, double *ideal_log)
+{
+    uint32_t *val = calloc(nv ? nv : 1, sizeof(uint32_t));
+    for (size_t i = 0; val && i < 4 * (size_t)nq; i++) val[quads[i]]++;
+    for (uint32_t q = 0; q < nq; q++) {
+        double a[4], sum = 0.0, l[4];
+        for (int k = 0; k < 4; k++) {
+            uint32_t k_v = val ? val[quads[4 * (size_t)q + k]] : 4;
+            a[k] = 2.0 * SQ_PI / (double)(k_v ? k_v : 4);
+            target[4 * (size_t)q + k] = a[k];
+            sum += a[k];
+        }
+        for (int k = 0; k < 4; k++) a[k] *= 2.0 * SQ_PI / sum;
+        double lm = 0.0;
+        if (!ideal_lengths(a, l)) l[0] = l[1] = l[2] = l[3] = 1.0;
+        for (int k = 0; k < 4; k++) lm += 0.25 * log(l[k]);
+        for (int k = 0; k < 4; k++) ideal_log[4 * (size_t)q + k] = log(l[k]) - lm;
+    }
+    free(val);
 }

@@ -17,11 +17,20 @@ typedef struct sq_smooth_ctx {
     const double *ref_normal;/* 3*nq: surface normal for the untangling terms   */
     const unsigned char *untangle; /* nq: 1 = the quad gets untangling terms    */
     const double *threshold; /* nq: feasible iff fold margin >= threshold       */
+    const double *target;    /* 4*nq: target angle of each corner (radians); NULL: pi/2 */
+    const double *ideal_log; /* 4*nq: log ideal length of each edge, zero mean; NULL: 0 */
     const uint32_t *con_quad;/* constraint block -> quad                        */
     double wa, wl, wu, wb;
     double damping;          /* weight of the per-vertex damping residuals      */
     long fold_rejections;    /* counted by the feasibility callback             */
 } sq_smooth_ctx;
+
+/* Per-corner target angles and per-edge ideal log lengths of every quad
+ * (docs/smooth.md, "Targets"): corner k of quad q aims at 2 pi / valence of
+ * its vertex; the ideal edge lengths are those of the planar quad whose
+ * angles are these targets scaled to sum 2 pi, closest to equal lengths.
+ * target, ideal_log: 4*nq each. */
+void sq_smooth_targets(uint32_t nv, uint32_t nq, const uint32_t *quads, double *target, double *ideal_log);
 
 /* Number of residuals of quad q (9, or 13 with untangling terms). */
 uint32_t sq_smooth_residual_count(const sq_smooth_ctx *c, uint32_t q);

@@ -1,0 +1,436 @@
+/* seamquad param: seamless, locally injective parametrization of a closed
+ * triangle mesh with prescribed cones (seed 7-9; sq_param.h). */
+#include <errno.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "cli_common.h"
+#include "sq_cones.h"
+#include "sq_domain.h"
+#include "sq_domain_svg.h"
+#include "sq_io.h"
+#include "sq_mesh.h"
+#include "sq_omega.h"
+#include "sq_param.h"
+
+#define MAX_VALENCE_HIST 64
+
+static void help(FILE *f)
+{
+    fprintf(f,
+            "usage: seamquad param MESH --cones FILE -o OUT.obj [options]\n"
+            "\n"
+            "Computes a seamless parametrization of a closed triangle mesh with exactly\n"
+            "the prescribed cones, by the combinatorial construction of Zhou, Tu, Zorin,\n"
+            "Campen (EG 2020, sections 7-9):\n"
+            "\n"
+            "  cut graph of the surface (4g-2 branches) -> combinatorial domain Q for its\n"
+            "  side pattern (seamquad domain) -> cone tree in Q, flat domain Omega ->\n"
+            "  the same tree on the surface -> boundary map by arc length, seam UVs on a\n"
+            "  dyadic grid -> Omega cut into rectangles, each surface cell mapped onto its\n"
+            "  rectangle by a Tutte embedding (bijective onto a convex target)\n"
+            "\n"
+            "OUT.obj is the input mesh, refined where the method needs Steiner vertices,\n"
+            "with a UV per corner (f v/vt). The input's vertices come first, in order and\n"
+            "with their coordinates; added vertices lie on the input surface. The map is\n"
+            "an integer grid map at unit-square scale, and every result is re-checked\n"
+            "before anything is written:\n"
+            "  - every UV triangle is positively oriented (exact predicate on the stored\n"
+            "    doubles): the map is locally injective;\n"
+            "  - across every seam the two UV copies differ by a rotation by a multiple\n"
+            "    of 90 degrees plus an integer translation, exactly in floating point,\n"
+            "    with one transition per seam curve;\n"
+            "  - the UV angle sum is k*pi/2 at a cone of valence k and 2*pi elsewhere.\n"
+            "The independent referee ../shared/tools/check_param.py MESH CONES OUT.obj\n"
+            "--integer checks the same (and that the refinement lies on the input).\n"
+            "\n"
+            "The mesh and cones are validated first, as by seamquad check: closed,\n"
+            "manifold, connected, oriented, no degenerate face; the cone file matches\n"
+            "the mesh; Gauss-Bonnet (sum of 4 - k = 4 * Euler characteristic); no\n"
+            "valence-1 cone and not the torus with one 3 and one 5 (no quad mesh exists).\n"
+            "\n"
+            "options:\n"
+            "  --cones FILE        cone file: Th_hat (one angle per vertex) or a cone\n"
+            "                      list (VERTEX VALENCE per line); see check --help\n"
+            "  -o OUT.obj          the parametrized mesh (v, vt, f v/vt)\n"
+            "  --svg OUT.svg       picture of the UV layout: triangles, seams coloured\n"
+            "                      per seam curve, cones by valence\n"
+            "  --domain-svg OUT.svg  picture of the flat domain Omega: Q's sides, the cone\n"
+            "                      tree, cone copies and branch points (seed Fig. 1)\n"
+            "  --seed N            seed of the cut graph's sampling (default 1): another\n"
+            "                      seed gives another valid parametrization\n"
+            "  --json              machine-readable statistics on stdout: sizes, domain,\n"
+            "                      seams, distortion, time per step, peak memory\n"
+            "  --quiet             no progress lines on stderr\n"
+            "  -h, --help          this help\n"
+            "\n"
+            "Outputs are written together at the end: on any error none of them is\n"
+            "written (an existing file of the same name stays as it was).\n"
+            "\n"
+            "exit codes: 0 success; 1 the input cannot be processed (the message names\n"
+            "the file, line, vertex or face) or an output cannot be written; 2 wrong\n"
+            "command line; 3 internal failure (a bug: the result failed its own check,\n"
+            "or out of memory).\n"
+            "\n"
+            "example:\n"
+            "  seamquad param ../shared/data/mpz/helmet.obj \\\n"
+            "      --cones ../shared/data/mpz/helmet_Th_hat -o helmet.param.obj \\\n"
+            "      --svg helmet.uv.svg --domain-svg helmet.omega.svg\n"
+            "  python3 ../shared/tools/check_param.py ../shared/data/mpz/helmet.obj \\\n"
+            "      ../shared/data/mpz/helmet_Th_hat helmet.param.obj --integer\n");
+}
+
+typedef struct progress_state {
+    double t0, t_last;
+    int quiet;
+    char last[64];
+} progress_state;
+
+/* One line when a stage starts, then at most one a second within it. */
+static void on_progress(void *ctx, const char *stage, double fraction)
+{
+    progress_state *p = ctx;
+    if (p->quiet) return;
+    if (!stage) stage = "";
+    double t = sq_now();
+    if (!strncmp(p->last, stage, sizeof p->last - 1) && t - p->t_last < 1.0) return;
+    if (fraction < 0) fraction = 0;
+    if (fraction > 1) fraction = 1;
+    fprintf(stderr, "seamquad param: [%3.0f%%] %-24s %7.2f s\n", 100 * fraction, stage, t - p->t0);
+    snprintf(p->last, sizeof p->last, "%s", stage);
+    p->t_last = t;
+}
+
+/* Outputs: each is written to a hidden staging file next to its target,
+ * and all are renamed over their targets only when every one is complete. */
+enum { OUT_OBJ, OUT_SVG, OUT_DOMAIN_SVG, NOUT };
+
+typedef struct output {
+    const char *path;
+    char *stage;  /* staging path */
+    int written;  /* staging file complete */
+} output;
+
+static char *staging_path(const char *path, int k)
+{
+    const char *slash = strrchr(path, '/');
+    size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
+    const char *base = slash ? slash + 1 : path;
+    size_t n = strlen(path) + 64;
+    char *s = malloc(n);
+    if (s)
+        snprintf(s, n, "%.*s.%s.seamquad-%ld-%d.partial", (int)dirlen, path, base, (long)getpid(),
+                 k);
+    return s;
+}
+
+/* Fails early (before the long computation) when a target cannot be
+ * created: the directory is missing or not writable. Leaves nothing. */
+static sq_status probe_output(const char *path, sq_error *err)
+{
+    sq_atomic_file af;
+    sq_status st = sq_atomic_open(&af, path, err);
+    if (st) return st;
+    sq_atomic_abort(&af);
+    return SQ_OK;
+}
+
+static sq_status write_domain_svg(const sq_param *P, const char *path, sq_error *err)
+{
+    if (P->domain && P->tree && P->omega)
+        return sq_omega_write_svg((const sq_domain *)P->domain, (const sq_cone_tree *)P->tree,
+                                  (const sq_omega *)P->omega, path, err);
+    if (P->domain) return sq_domain_write_svg((const sq_domain *)P->domain, NULL, path, err);
+    return sq_error_set(err, SQ_ERR_INTERNAL, "%s: the parametrization kept no domain to draw",
+                        path);
+}
+
+static long peak_rss_kb(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0) return -1;
+    return ru.ru_maxrss; /* kilobytes on Linux */
+}
+
+static void print_json(const char *mesh_path, const char *cones_path, const sq_param_stats *s,
+                       const uint32_t *hist, double t_read, double t_validate, double t_verify,
+                       double t_output, double t_total, const output *out)
+{
+    printf("{\n  \"ok\": true,\n  \"mesh\": ");
+    sq_json_string(stdout, mesh_path);
+    printf(",\n  \"cones_file\": ");
+    sq_json_string(stdout, cones_path);
+    printf(",\n  \"genus\": %u,\n  \"cones\": %u,\n  \"cone_histogram\": {", s->genus, s->ncones);
+    int first = 1;
+    for (uint32_t k = 0; k < MAX_VALENCE_HIST; k++) {
+        if (k == 4 || !hist[k]) continue;
+        printf("%s\"%s%u\": %u", first ? "" : ", ", k == MAX_VALENCE_HIST - 1 ? ">=" : "", k,
+               hist[k]);
+        first = 0;
+    }
+    printf("},\n");
+    printf("  \"verts_in\": %u,\n  \"faces_in\": %u,\n  \"verts_out\": %u,\n  \"faces_out\": %u,\n"
+           "  \"steiner\": %u,\n  \"uv_points\": %u,\n",
+           s->verts_in, s->faces_in, s->verts_out, s->faces_out, s->steiner, s->nuv);
+    printf("  \"cut_edges\": %u,\n  \"quads_before_padding\": %llu,\n  \"quads_added_by_padding\": "
+           "%llu,\n  \"quads\": %llu,\n",
+           s->cut_edges, (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
+           (unsigned long long)(s->quads_unpadded + s->quads_added));
+    printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
+           "  \"seam_edges\": %u,\n",
+           s->tree_edges, s->tree_segments, s->chords, s->cells, s->seam_edges);
+    printf("  \"distortion\": {\"sym_dirichlet_mean\": %.9g, \"sym_dirichlet_max\": %.9g, "
+           "\"conformal_mean\": %.9g, \"conformal_max\": %.9g},\n",
+           s->sym_dirichlet_mean, s->sym_dirichlet_max, s->conformal_mean, s->conformal_max);
+    printf("  \"verified\": {\"orientation_exact\": true, \"seams_exact\": true, "
+           "\"integer_translations\": true, \"cones_on_grid\": true, \"angle_sums\": true},\n");
+    printf("  \"time_s\": {\"read\": %.6f, \"validate\": %.6f, \"cut\": %.6f, \"domain\": %.6f, "
+           "\"omega\": %.6f, \"tree\": %.6f, \"boundary\": %.6f, \"cells\": %.6f, \"tutte\": %.6f, "
+           "\"check\": %.6f, \"param_total\": %.6f, \"verify\": %.6f, \"output\": %.6f, "
+           "\"total\": %.6f},\n",
+           t_read, t_validate, s->t_cut, s->t_domain, s->t_omega, s->t_tree, s->t_boundary,
+           s->t_cells, s->t_tutte, s->t_check, s->t_total, t_verify, t_output, t_total);
+    printf("  \"peak_rss_mb\": %.1f,\n  \"outputs\": [", peak_rss_kb() / 1024.0);
+    first = 1;
+    for (int i = 0; i < NOUT; i++) {
+        if (!out[i].path) continue;
+        printf("%s", first ? "" : ", ");
+        sq_json_string(stdout, out[i].path);
+        first = 0;
+    }
+    printf("]\n}\n");
+}
+
+static void print_text(const char *mesh_path, const sq_param_stats *s, const uint32_t *hist,
+                       double t_read, double t_validate, double t_verify, double t_output,
+                       double t_total, const output *out)
+{
+    printf("mesh           %s: %u vertices, %u faces, genus %u\n", mesh_path, s->verts_in,
+           s->faces_in, s->genus);
+    if (!s->ncones) {
+        printf("cones          none (every vertex regular)\n");
+    } else {
+        printf("cones          %u  (", s->ncones);
+        int first = 1;
+        for (uint32_t k = 0; k < MAX_VALENCE_HIST; k++) {
+            if (k == 4 || !hist[k]) continue;
+            printf("%s%s%u:%u", first ? "" : " ", k == MAX_VALENCE_HIST - 1 ? ">=" : "", k,
+                   hist[k]);
+            first = 0;
+        }
+        printf("; valence:count)\n");
+    }
+    printf("cut graph      %u edges\n", s->cut_edges);
+    printf("domain         %llu quads before padding + %llu padding = %llu\n",
+           (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
+           (unsigned long long)(s->quads_unpadded + s->quads_added));
+    printf("cone tree      %u edges in %u segments; Omega cut into %u rectangles by %u chords\n",
+           s->tree_edges, s->tree_segments, s->cells, s->chords);
+    printf("output         %u vertices (%u Steiner), %u faces, %u UV points, %u seam edges\n",
+           s->verts_out, s->steiner, s->faces_out, s->nuv, s->seam_edges);
+    printf("distortion     symmetric Dirichlet mean %.4g max %.4g; conformal ratio mean %.4g "
+           "max %.4g\n",
+           s->sym_dirichlet_mean, s->sym_dirichlet_max, s->conformal_mean, s->conformal_max);
+    printf("verified       every UV triangle positive (exact); every seam a rotation by k*90 "
+           "degrees plus an integer translation, exactly, one per seam curve; cones on the "
+           "integer grid; angle sums = cone angles\n");
+    printf("time           read %.2f s, validate %.2f s, cut %.2f s, domain %.2f s, omega %.2f s, "
+           "tree %.2f s, boundary %.2f s, cells %.2f s, tutte %.2f s, check %.2f s, verify "
+           "%.2f s, output %.2f s; total %.2f s\n",
+           t_read, t_validate, s->t_cut, s->t_domain, s->t_omega, s->t_tree, s->t_boundary,
+           s->t_cells, s->t_tutte, s->t_check, t_verify, t_output, t_total);
+    printf("memory         peak %.1f MB\n", peak_rss_kb() / 1024.0);
+    for (int i = 0; i < NOUT; i++)
+        if (out[i].path) printf("wrote          %s\n", out[i].path);
+}
+
+int sq_cmd_param(int argc, char **argv)
+{
+    const char *mesh_path = NULL, *cones_path = NULL;
+    output out[NOUT];
+    memset(out, 0, sizeof out);
+    int json = 0, quiet = 0;
+    unsigned long long seed = 1;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int has = i + 1 < argc;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            help(stdout);
+            return SQ_EXIT_OK;
+        } else if (!strcmp(a, "--json")) {
+            json = 1;
+        } else if (!strcmp(a, "--quiet")) {
+            quiet = 1;
+        } else if (!strcmp(a, "--cones") && has) {
+            cones_path = argv[++i];
+        } else if (!strcmp(a, "-o") && has) {
+            out[OUT_OBJ].path = argv[++i];
+        } else if (!strcmp(a, "--svg") && has) {
+            out[OUT_SVG].path = argv[++i];
+        } else if (!strcmp(a, "--domain-svg") && has) {
+            out[OUT_DOMAIN_SVG].path = argv[++i];
+        } else if (!strcmp(a, "--seed") && has) {
+            char *e;
+            const char *arg = argv[++i];
+            errno = 0;
+            seed = strtoull(arg, &e, 10);
+            if (e == arg || *e || errno || arg[0] == '-') {
+                fprintf(stderr, "seamquad param: --seed needs a non-negative integer, got '%s'\n",
+                        arg);
+                return SQ_EXIT_USAGE;
+            }
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "seamquad param: unknown option or missing value '%s' (see seamquad "
+                            "param --help)\n", a);
+            return SQ_EXIT_USAGE;
+        } else if (!mesh_path) {
+            mesh_path = a;
+        } else {
+            fprintf(stderr, "seamquad param: unexpected argument '%s' (one mesh only)\n", a);
+            return SQ_EXIT_USAGE;
+        }
+    }
+    if (!mesh_path || !cones_path || !out[OUT_OBJ].path) {
+        fprintf(stderr, "seamquad param: give MESH, --cones FILE and -o OUT.obj (see seamquad "
+                        "param --help)\n");
+        return SQ_EXIT_USAGE;
+    }
+    for (int i = 0; i < NOUT; i++)
+        for (int j = 0; j < i; j++)
+            if (out[i].path && out[j].path && !strcmp(out[i].path, out[j].path)) {
+                fprintf(stderr, "seamquad param: '%s' is given as two outputs\n", out[i].path);
+                return SQ_EXIT_USAGE;
+            }
+
+    sq_error err;
+    sq_error_clear(&err);
+    sq_soup soup;
+    memset(&soup, 0, sizeof soup);
+    sq_mesh mesh;
+    memset(&mesh, 0, sizeof mesh);
+    int32_t *val = NULL;
+    sq_param P;
+    sq_param_init(&P);
+    sq_param_stats stats;
+    memset(&stats, 0, sizeof stats);
+    uint32_t hist[MAX_VALENCE_HIST] = {0};
+    int rc = SQ_EXIT_OK;
+    const char *stage = "read";
+    double t0 = sq_now(), t_read = 0, t_validate = 0, t_verify = 0, t_output = 0;
+
+    /* input, validated before any work */
+    if (sq_read_mesh(mesh_path, &soup, &err)) goto fail;
+    t_read = sq_now() - t0;
+    stage = "validate";
+    double t1 = sq_now();
+    if (sq_mesh_from_soup(&soup, 0, &mesh, &err)) goto fail;
+    t_validate = sq_now() - t1;
+    stage = "cones";
+    val = malloc((size_t)mesh.nv * sizeof *val);
+    if (!val) {
+        sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    if (sq_cones_read(cones_path, mesh.nv, val, NULL, &err)) goto fail;
+    sq_cones_histogram(mesh.nv, val, hist, MAX_VALENCE_HIST);
+    if (sq_cones_check_realizable(mesh.nv, val, sq_mesh_genus(&mesh), &err)) {
+        /* the library message knows vertices, not the file */
+        char msg[SQ_ERROR_MSG_MAX];
+        snprintf(msg, sizeof msg, "%s", err.msg);
+        sq_error_set(&err, err.code, "%s: %s", cones_path, msg);
+        goto fail;
+    }
+    stage = "output";
+    for (int i = 0; i < NOUT; i++)
+        if (out[i].path && probe_output(out[i].path, &err)) goto fail;
+
+    /* the parametrization */
+    stage = "param";
+    progress_state ps;
+    memset(&ps, 0, sizeof ps);
+    ps.t0 = ps.t_last = sq_now();
+    ps.quiet = quiet;
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.seed = seed;
+    opt.progress = on_progress;
+    opt.progress_ctx = &ps;
+    if (sq_param_build(&mesh, val, &opt, &P, &stats, &err)) goto fail;
+    /* the library's own check ran inside; this one is independent */
+    stage = "verify";
+    double t2 = sq_now();
+    if (sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err)) goto fail;
+    t_verify = sq_now() - t2;
+    if (!quiet) on_progress(&ps, "verified", 1.0);
+
+    /* outputs: staged, then renamed together */
+    stage = "output";
+    double t3 = sq_now();
+    for (int i = 0; i < NOUT; i++) {
+        if (!out[i].path) continue;
+        out[i].stage = staging_path(out[i].path, i);
+        if (!out[i].stage) {
+            sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
+            goto fail;
+        }
+        sq_status st = i == OUT_OBJ   ? sq_param_write_obj(out[i].stage, &P, &err)
+                       : i == OUT_SVG ? sq_param_write_svg(out[i].stage, &P, &err)
+                                      : write_domain_svg(&P, out[i].stage, &err);
+        if (st) {
+            /* name the user's file, not the staging file */
+            char msg[2 * SQ_ERROR_MSG_MAX];
+            const char *at = strstr(err.msg, out[i].stage);
+            if (at)
+                snprintf(msg, sizeof msg, "%.*s%s%s", (int)(at - err.msg), err.msg, out[i].path,
+                         at + strlen(out[i].stage));
+            else
+                snprintf(msg, sizeof msg, "%s: %s", out[i].path, err.msg);
+            sq_error_set(&err, st, "%.*s", SQ_ERROR_MSG_MAX - 1, msg);
+            goto fail;
+        }
+        out[i].written = 1;
+    }
+    for (int i = 0; i < NOUT; i++) {
+        if (!out[i].path) continue;
+        if (rename(out[i].stage, out[i].path) != 0) {
+            int e = errno;
+            sq_error_set(&err, SQ_ERR_IO, "%s: cannot write (rename): %s", out[i].path,
+                         strerror(e));
+            goto fail;
+        }
+        out[i].written = 0;
+    }
+    t_output = sq_now() - t3;
+
+    if (json)
+        print_json(mesh_path, cones_path, &stats, hist, t_read, t_validate, t_verify, t_output,
+                   sq_now() - t0, out);
+    else
+        print_text(mesh_path, &stats, hist, t_read, t_validate, t_verify, t_output, sq_now() - t0,
+                   out);
+    goto done;
+fail:
+    fprintf(stderr, "seamquad param: error (%s): %s\n", stage, err.msg);
+    if (json) {
+        printf("{\n  \"ok\": false,\n  ");
+        sq_json_error(err.code, stage, err.msg);
+        printf("\n}\n");
+    }
+    /* the command line was checked above: an argument error from the
+     * library here is about the input's content */
+    rc = err.code == SQ_ERR_ARGUMENT ? SQ_EXIT_INVALID_INPUT : sq_exit_code(err.code);
+done:
+    for (int i = 0; i < NOUT; i++) {
+        if (out[i].stage && out[i].written) unlink(out[i].stage);
+        free(out[i].stage);
+    }
+    sq_param_free(&P);
+    free(val);
+    sq_mesh_free(&mesh);
+    sq_soup_free(&soup);
+    return rc;
+}

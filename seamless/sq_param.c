@@ -1,0 +1,1314 @@
+/* seamquad: seamless parametrization of a closed surface (sq_param.h;
+ * seed 7 "Compatible Cutting", seed 8 "Bijective Parametrization",
+ * seamless-notes 5; docs/param.md). */
+#include "sq_param.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stdio.h>
+#include <time.h>
+
+#include "sq_cones.h"
+#include "sq_cut_graph.h"
+#include "sq_domain.h"
+#include "sq_omega.h"
+#include "sq_omega_cells.h"
+#include "sq_predicates.h"
+#include "sq_sparse.h"
+#include "sq_tsurf.h"
+
+void sq_param_options_default(sq_param_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->seed = 1;
+}
+
+void sq_param_init(sq_param *P) { memset(P, 0, sizeof *P); }
+
+void sq_param_free(sq_param *P)
+{
+    free(P->pos);
+    free(P->tri);
+    free(P->tri_uv);
+    free(P->uv);
+    free(P->he_seam);
+    free(P->valence);
+    if (P->domain) sq_domain_free(P->domain);
+    if (P->tree) sq_cone_tree_free(P->tree);
+    if (P->omega) sq_omega_free(P->omega);
+    free(P->domain);
+    free(P->tree);
+    free(P->omega);
+    sq_param_init(P);
+}
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* ---- working state ---------------------------------------------------- */
+
+typedef struct ctx {
+    const sq_mesh *m;
+    const sq_param_options *opt;
+    sq_error *err;
+    sq_tsurf S;
+    sq_cut_graph G;
+    sq_pattern pcw;      /* the cut disk's word read clockwise            */
+    uint32_t k, r;       /* sides; Q side i = clockwise side (i + r) % k   */
+    sq_domain *D;
+    sq_cone_tree *T;
+    sq_omega *O;
+    sq_omega_cells C;
+    uint32_t *o2m;       /* O->cut.nh: M halfedge naming the same sector   */
+    uint32_t *sec_uv;    /* 3 S.cap_f: UV index of the sector named by h   */
+    uint32_t cap_sec;
+    double *uv;
+    uint32_t nuv, cap_uv;
+    int dyadic;          /* seam UVs are multiples of 2^-dyadic             */
+} ctx;
+
+static void progress(ctx *c, const char *stage, double f)
+{
+    if (c->opt && c->opt->progress) c->opt->progress(c->opt->progress_ctx, stage, f);
+}
+
+static int sec_reserve(ctx *c)
+{
+    uint32_t need = c->S.cap_h;
+    if (need <= c->cap_sec) return 0;
+    uint32_t *p = realloc(c->sec_uv, (size_t)need * sizeof *p);
+    if (!p) return -1;
+    for (uint32_t i = c->cap_sec; i < need; i++) p[i] = SQ_NONE;
+    c->sec_uv = p;
+    c->cap_sec = need;
+    return 0;
+}
+
+static uint32_t uv_add(ctx *c, double u, double v)
+{
+    if (c->nuv == c->cap_uv) {
+        uint32_t cap = c->cap_uv ? 2 * c->cap_uv : 1024;
+        double *p = realloc(c->uv, 2 * (size_t)cap * sizeof *p);
+        if (!p) return SQ_NONE;
+        c->uv = p;
+        c->cap_uv = cap;
+    }
+    c->uv[2 * c->nuv] = u;
+    c->uv[2 * c->nuv + 1] = v;
+    return c->nuv++;
+}
+
+static double snap(const ctx *c, double x) { return ldexp(nearbyint(ldexp(x, c->dyadic)), -c->dyadic); }
+
+static double dist3(const sq_tsurf *S, uint32_t a, uint32_t b)
+{
+    double x = S->pos[3 * a] - S->pos[3 * b], y = S->pos[3 * a + 1] - S->pos[3 * b + 1],
+           z = S->pos[3 * a + 2] - S->pos[3 * b + 2];
+    return sqrt(x * x + y * y + z * z);
+}
+
+/* y = R^rot x + t (R: +90 degrees), exact for dyadic x */
+static void transition(const sq_omega *O, uint32_t l, const double x[2], double y[2])
+{
+    double a = x[0], b = x[1];
+    for (uint32_t i = 0; i < O->label_rot[l]; i++) {
+        double t = a;
+        a = -b, b = t;
+    }
+    y[0] = a + (double)O->label_t[2 * l];
+    y[1] = b + (double)O->label_t[2 * l + 1];
+}
+
+/* ---- step 1-3: cut graph, domain, Omega ------------------------------ */
+
+static sq_status reverse_pattern(const sq_pattern *in, sq_pattern *out, sq_error *err)
+{
+    uint32_t k = in->k;
+    sq_status st = sq_pattern_alloc(out, k, err);
+    if (st) return st;
+    for (uint32_t j = 0; j < k; j++) {
+        out->partner[j] = k - 1 - in->partner[k - 1 - j];
+        out->straight[j] = in->straight ? in->straight[(k - j) % k] : 0;
+    }
+    return SQ_OK;
+}
+
+/* Q side i = clockwise surface side (i + r) % k with the same partners. */
+static int find_offset(const sq_pattern *cw, const sq_pattern *q, uint32_t *r)
+{
+    uint32_t k = q->k;
+    if (cw->k != k) return -1;
+    for (uint32_t o = 0; o < k; o++) {
+        uint32_t i = 0;
+        for (; i < k; i++)
+            if (cw->partner[(i + o) % k] != (q->partner[i] + o) % k) break;
+        if (i == k) {
+            *r = o;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st_out)
+{
+    const sq_mesh *m = c->m;
+    sq_error *err = c->err;
+    uint32_t genus = (uint32_t)sq_mesh_genus(m);
+    uint8_t *cone = calloc(m->nv, 1);
+    int32_t *val = malloc((size_t)m->nv * sizeof *val);
+    sq_status st = SQ_OK;
+    if (!cone || !val) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    uint32_t nc = 0;
+    for (uint32_t v = 0; v < m->nv; v++)
+        if (valence[v] != 4) cone[v] = 1, val[nc++] = valence[v];
+    double t0 = now_s();
+    progress(c, "cut graph", 0.0);
+    sq_cut_options copt;
+    sq_cut_options_default(&copt);
+    copt.seed = c->opt ? c->opt->seed : 1;
+    sq_cut_stats cst;
+    memset(&cst, 0, sizeof cst);
+    if (genus >= 2)
+        st = sq_cut_graph_build(m, cone, &copt, &c->G, &cst, err);
+    else
+        st = sq_cut_graph_build_low_genus(m, cone, &copt, &c->G, &cst, err);
+    if (st) goto done;
+    st = reverse_pattern(&c->G.pattern, &c->pcw, err);
+    if (st) goto done;
+    double t1 = now_s();
+    progress(c, "domain", 0.1);
+    sq_domain_options dopt;
+    memset(&dopt, 0, sizeof dopt);
+    dopt.offset = SQ_NONE;
+    if (genus >= 2) dopt.pattern = &c->pcw;
+    st = sq_domain_build(genus, val, nc, &dopt, c->D, err);
+    if (st) goto done;
+    c->k = c->D->k;
+    if (find_offset(&c->pcw, &c->D->pattern, &c->r)) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL,
+                          "the cut graph's side pattern (%u sides) does not match the domain's",
+                          c->pcw.k);
+        goto done;
+    }
+    double t2 = now_s();
+    progress(c, "omega", 0.2);
+    st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
+    if (st == SQ_OK) st = sq_omega_build(c->D, c->T, c->O, err);
+    if (st) goto done;
+    double t3 = now_s();
+    if (st_out) {
+        st_out->genus = genus;
+        st_out->ncones = nc;
+        st_out->cut_edges = c->G.ncut_edges;
+        st_out->quads_unpadded = c->D->quads_unpadded;
+        st_out->quads_added = c->D->quads_added;
+        st_out->tree_edges = c->T->nedges;
+        st_out->tree_segments = c->T->nseg;
+        st_out->t_cut = t1 - t0;
+        st_out->t_domain = t2 - t1;
+        st_out->t_omega = t3 - t2;
+    }
+done:
+    free(cone);
+    free(val);
+    return st;
+}
+
+/* ---- step 4: the cut graph and the cone tree on the surface ----------- */
+
+/* Labels the surface cut graph's sides with Omega's labels (Q side i of the
+ * clockwise reading; the root splits side root_side) and returns the root. */
+static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
+{
+    sq_tsurf *S = &c->S;
+    const sq_omega *O = c->O;
+    sq_cut_graph *G = &c->G;
+    uint32_t k = c->k;
+    for (uint32_t s = 0; s < k; s++) {
+        uint32_t i = (2 * k - 1 - s - c->r) % k; /* clockwise side k-1-s = Q side i + r */
+        for (uint32_t e = G->side_off[s]; e < G->side_off[s + 1]; e++) {
+            uint32_t h = hmap[G->side_he[e]];
+            if (!S->kind[h]) sq_tsurf_cut_edge(S, h, SQ_TS_SEAM, i, O->label_partner[i]);
+            else if (S->label[h] != i)
+                return sq_error_set(c->err, SQ_ERR_INTERNAL, "surface side %u: label %u, expected %u", s,
+                                    S->label[h], i);
+        }
+    }
+    /* consistency of the walk with the cut graph's word */
+    for (uint32_t e = 0; e + 1 < G->side_off[k]; e++)
+        if (sq_tsurf_next_boundary(S, hmap[G->side_he[e]]) != hmap[G->side_he[e + 1]])
+            return sq_error_set(c->err, SQ_ERR_INTERNAL, "cut graph walk disagrees at side edge %u", e);
+    /* the root: a vertex inside surface side s_r (Q side root_side) */
+    uint32_t qs = O->root_side;
+    uint32_t s_r = k - 1 - (qs + c->r) % k;
+    uint32_t a = G->side_off[s_r], n = G->side_off[s_r + 1] - a;
+    if (O->root_pos == 0)
+        return sq_error_set(c->err, SQ_ERR_INTERNAL, "the cone tree's root is a corner of Q");
+    if (n == 1) { /* split the side's only edge */
+        if (sq_tsurf_split_edge(S, hmap[G->side_he[a]], 0.5) == SQ_NONE)
+            return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    }
+    /* walk the side again (splits change it) */
+    uint32_t *side = NULL, ns = 0, cap = 0;
+    uint32_t end_v = G->corner_vertex[(s_r + 1) % k];
+    uint32_t h = hmap[G->side_he[a]];
+    for (;;) {
+        if (ns == cap) {
+            cap = cap ? 2 * cap : 64;
+            uint32_t *p = realloc(side, cap * sizeof *p);
+            if (!p) return free(side), sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            side = p;
+        }
+        side[ns++] = h;
+        if (sq_ts_head(S, h) == end_v) break;
+        h = sq_tsurf_next_boundary(S, h);
+    }
+    /* clockwise fraction root_pos / side_len from Q corner qs = counter-
+     * clockwise fraction 1 - that from the side's start */
+    double frac = 1.0 - (double)O->root_pos / (double)c->D->side_len[qs];
+    uint32_t ir = (uint32_t)lround(frac * ns);
+    if (ir < 1) ir = 1;
+    if (ir > ns - 1) ir = ns - 1;
+    uint32_t lr = k + 2 * c->T->nseg;
+    if (O->nlabels != lr + 2 || O->label_partner[lr] != lr + 1) {
+        free(side);
+        return sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega has no root-split labels");
+    }
+    for (uint32_t e = 0; e < ir; e++) S->label[side[e]] = lr, S->label[S->twin[side[e]]] = lr + 1;
+    *root_he = side[ir];
+    free(side);
+    return SQ_OK;
+}
+
+typedef struct node_item {
+    uint32_t ti;     /* tree vertex index */
+    uint32_t sector; /* M sector for the next child */
+    uint32_t pos;    /* next position in the rotation list */
+} node_item;
+
+static sq_status replicate_tree(ctx *c, uint32_t root_he)
+{
+    sq_tsurf *S = &c->S;
+    const sq_cone_tree *T = c->T;
+    const sq_metapolygon *Q = &c->D->quads;
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    uint32_t *ti_of = malloc((size_t)Q->nv * sizeof *ti_of);
+    uint32_t *seg_of = malloc((size_t)Q->nh * sizeof *seg_of);
+    uint8_t *free_cone = malloc(S->cap_v);
+    node_item *stack = malloc(((size_t)T->nverts + 1) * sizeof *stack);
+    uint32_t *path = NULL, npath = 0;
+    if (!ti_of || !seg_of || !free_cone || !stack) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t v = 0; v < Q->nv; v++) ti_of[v] = SQ_NONE;
+    for (uint32_t i = 0; i < T->nverts; i++) ti_of[T->vert[i]] = i;
+    for (uint32_t h = 0; h < Q->nh; h++) seg_of[h] = SQ_NONE;
+    for (uint32_t s = 0; s < T->nseg; s++) seg_of[T->seg_he[T->seg_off[s]]] = s;
+    for (uint32_t v = 0; v < S->nv; v++) free_cone[v] = S->valence[v] != 4;
+    /* length scale: surface length per quad edge */
+    double area = 0;
+    for (uint32_t f = 0; f < S->nf; f++) {
+        uint32_t h = S->f_he[f];
+        const double *p = S->pos + 3 * S->vert[h], *q = S->pos + 3 * S->vert[S->next[h]],
+                     *r = S->pos + 3 * S->vert[S->next[S->next[h]]];
+        double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+        double x = u[1] * w[2] - u[2] * w[1], y = u[2] * w[0] - u[0] * w[2], z = u[0] * w[1] - u[1] * w[0];
+        area += 0.5 * sqrt(x * x + y * y + z * z);
+    }
+    double scale = sqrt(area / (double)Q->nf);
+    uint32_t nst = 0, done_seg = 0;
+    stack[nst++] = (node_item){0, root_he, 0};
+    while (nst) {
+        node_item *it = &stack[nst - 1];
+        uint32_t ti = it->ti;
+        uint32_t r0 = T->rot_off[ti], r1 = T->rot_off[ti + 1];
+        uint32_t p = it->pos + r0;
+        if (ti != 0 && p == r0) p++; /* skip the parent edge */
+        if (p >= r1) {
+            nst--;
+            continue;
+        }
+        it->pos = p + 1 - r0;
+        uint32_t qh = T->rot_he[p];
+        uint32_t s = seg_of[qh];
+        if (s == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "tree halfedge %u starts no segment", qh);
+            goto done;
+        }
+        uint32_t last = T->seg_he[T->seg_off[s + 1] - 1];
+        uint32_t qend = Q->he_vert[Q->he_next[last]];
+        uint32_t te = ti_of[qend];
+        uint8_t *fc = realloc(free_cone, S->cap_v);
+        if (!fc) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        free_cone = fc;
+        for (uint32_t v = S->nv; v-- > 0 && v >= S->nv_input;) free_cone[v] = 0;
+        /* first a path along existing edges through vertices off the cut;
+         * where cones or cuts block it, a path through faces with Steiner
+         * vertices on the crossed edges (seed 9.4, [SAPH04]) */
+        int is_cone_node = (T->node[te] & SQ_TREE_CONE) != 0;
+        double tlen = scale * (double)(T->seg_off[s + 1] - T->seg_off[s]);
+        npath = 0;
+        if (sq_tsurf_open_sector(S, it->sector) < 0) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        if (is_cone_node)
+            for (uint32_t v = 0; v < S->nv_input; v++)
+                if (free_cone[v] && S->valence[v] == (int32_t)Q->v_nface[qend] && sq_tsurf_open_vertex(S, v) < 0) {
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                    goto done;
+                }
+        fc = realloc(free_cone, S->cap_v);
+        if (!fc || sec_reserve(c)) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        free_cone = fc;
+        for (uint32_t v = S->nv; v-- > 0 && v >= S->nv_input;) free_cone[v] = 0;
+        st = sq_tsurf_route(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
+                            is_cone_node ? (int32_t)Q->v_nface[qend] : 4, free_cone, tlen, SQ_NONE,
+                            &path, &npath, err);
+        if (st == SQ_ERR_INTERNAL) {
+            if (getenv("SQ_DEBUG")) fprintf(stderr, "segment %u vertex route: %s\n", s, err ? err->msg : "");
+            npath = 0;
+            st = sq_tsurf_route_faces(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
+                                      is_cone_node ? (int32_t)Q->v_nface[qend] : 4, free_cone, tlen,
+                                      SQ_NONE, &path, &npath, err);
+            fc = realloc(free_cone, S->cap_v);
+            if (!fc || sec_reserve(c)) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                goto done;
+            }
+            free_cone = fc;
+            for (uint32_t v = S->nv; v-- > 0 && v >= S->nv_input;) free_cone[v] = 0;
+        }
+        if (st) goto done;
+        uint32_t lab = c->k + 2 * s;
+        for (uint32_t e = 0; e < npath; e++) sq_tsurf_cut_edge(S, path[e], SQ_TS_SEAM, lab, lab + 1);
+        uint32_t vend = sq_ts_head(S, path[npath - 1]);
+        free_cone[vend] = 0;
+        it->sector = path[0];
+        done_seg++;
+        stack[nst++] = (node_item){te, S->twin[path[npath - 1]], 0};
+        progress(c, "cone tree", 0.3 + 0.1 * done_seg / (double)T->nseg);
+    }
+    if (done_seg != T->nseg) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "replicated %u of %u tree segments", done_seg, T->nseg);
+        goto done;
+    }
+    for (uint32_t v = 0; v < S->nv_input; v++)
+        if (free_cone[v]) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "cone at vertex %u was not reached by the tree", v);
+            goto done;
+        }
+done:
+    free(ti_of);
+    free(seg_of);
+    free(free_cone);
+    free(stack);
+    free(path);
+    return st;
+}
+
+/* ---- step 5: boundary map ---------------------------------------------- */
+
+typedef struct run {
+    uint32_t label;
+    uint32_t m0, mn;   /* M run: first halfedge index in mseq, count */
+    uint32_t o0, on;   /* Omega run: first index in oseq, count      */
+} run;
+
+/* Splits the polyline of halfedges he[0..n) at the arc-length fractions
+ * j / N (j = 1 .. N-1), snapping to existing vertices that are close.
+ * matched (N + 1 entries) receives the vertex for every j. */
+static sq_status split_polyline(ctx *c, const uint32_t *he, uint32_t n, uint32_t N, uint32_t *matched)
+{
+    sq_tsurf *S = &c->S;
+    double *cum = malloc(((size_t)n + 1) * sizeof *cum);
+    uint8_t *used = calloc((size_t)n + 1, 1);
+    if (!cum || !used) {
+        free(cum), free(used);
+        return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    }
+    cum[0] = 0;
+    for (uint32_t i = 0; i < n; i++) cum[i + 1] = cum[i] + dist3(S, S->vert[he[i]], sq_ts_head(S, he[i]));
+    double L = cum[n], unit = L / N;
+    matched[0] = S->vert[he[0]];
+    matched[N] = sq_ts_head(S, he[n - 1]);
+    used[0] = used[n] = 1;
+    /* decide per target: an existing vertex or a split point */
+    uint32_t *tgt_edge = malloc((size_t)N * sizeof *tgt_edge);
+    double *tgt_s = malloc((size_t)N * sizeof *tgt_s);
+    if (!tgt_edge || !tgt_s) {
+        free(cum), free(used), free(tgt_edge), free(tgt_s);
+        return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    }
+    uint32_t i = 0;
+    for (uint32_t j = 1; j < N; j++) {
+        double s = unit * j;
+        while (i + 1 < n && cum[i + 1] <= s) i++;
+        tgt_edge[j] = i, tgt_s[j] = s;
+        double tol = 0.15 * unit;
+        double d0 = s - cum[i], d1 = cum[i + 1] - s, li = cum[i + 1] - cum[i];
+        if (d0 < tol && d0 < 0.3 * li && !used[i]) {
+            used[i] = 1, matched[j] = S->vert[he[i]], tgt_edge[j] = SQ_NONE;
+        } else if (d1 < tol && d1 < 0.3 * li && i + 1 < n && !used[i + 1]) {
+            used[i + 1] = 1, matched[j] = S->vert[he[i + 1]], tgt_edge[j] = SQ_NONE;
+        }
+    }
+    /* enforce order: a snapped vertex must lie after the previous match */
+    sq_status st = SQ_OK;
+    /* splits, last target first, so that each edge's first half keeps its
+     * index and covers [cum[i], current end) */
+    double *end_s = malloc((size_t)n * sizeof *end_s);
+    if (!end_s) {
+        st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        goto out;
+    }
+    for (uint32_t e = 0; e < n; e++) end_s[e] = cum[e + 1];
+    for (uint32_t j = N; j-- > 1;) {
+        if (tgt_edge[j] == SQ_NONE) continue;
+        uint32_t e = tgt_edge[j];
+        double t = (tgt_s[j] - cum[e]) / (end_s[e] - cum[e]);
+        if (!(t > 1e-12 && t < 1 - 1e-12)) t = 0.5;
+        uint32_t v = sq_tsurf_split_edge(S, he[e], t);
+        if (v == SQ_NONE) {
+            st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            goto out;
+        }
+        end_s[e] = tgt_s[j];
+        matched[j] = v;
+    }
+out:
+    free(end_s);
+    free(cum);
+    free(used);
+    free(tgt_edge);
+    free(tgt_s);
+    return st;
+}
+
+/* Halfedges of a polyline run from start halfedge h to vertex end_v along
+ * the boundary (after splits). */
+static sq_status walk_run(ctx *c, uint32_t h, uint32_t end_v, uint32_t **out, uint32_t *n)
+{
+    uint32_t cap = 16, cnt = 0;
+    uint32_t *a = malloc(cap * sizeof *a);
+    if (!a) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    for (;;) {
+        if (cnt == cap) {
+            cap *= 2;
+            uint32_t *p = realloc(a, cap * sizeof *p);
+            if (!p) return free(a), sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            a = p;
+        }
+        a[cnt++] = h;
+        if (sq_ts_head(&c->S, h) == end_v) break;
+        if (cnt > c->S.nh) return free(a), sq_error_set(c->err, SQ_ERR_INTERNAL, "run walk does not end");
+        h = sq_tsurf_next_boundary(&c->S, h);
+    }
+    *out = a;
+    *n = cnt;
+    return SQ_OK;
+}
+
+/* UVs of the polyline he[0..n) whose vertices matched[0..N] sit at the
+ * grid points g[0..N] (integer); intermediate vertices by arc length,
+ * snapped. uvv receives the UV index per polyline vertex (n + 1). */
+static sq_status polyline_uv(ctx *c, const uint32_t *he, uint32_t n, const uint32_t *matched,
+                             const int64_t *g, uint32_t N, uint32_t *uvv)
+{
+    sq_tsurf *S = &c->S;
+    uint32_t j = 0, i0 = 0;
+    for (uint32_t i = 0; i <= n; i++) {
+        uint32_t v = i < n ? S->vert[he[i]] : sq_ts_head(S, he[n - 1]);
+        if (j <= N && v == matched[j]) {
+            uvv[i] = uv_add(c, (double)g[2 * j], (double)g[2 * j + 1]);
+            if (uvv[i] == SQ_NONE) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            if (j > 0 && i > i0 + 1) { /* fill i0+1 .. i-1 */
+                double tot = 0;
+                for (uint32_t q = i0; q < i; q++) tot += dist3(S, S->vert[he[q]], sq_ts_head(S, he[q]));
+                double acc = 0;
+                for (uint32_t q = i0 + 1; q < i; q++) {
+                    acc += dist3(S, S->vert[he[q - 1]], sq_ts_head(S, he[q - 1]));
+                    double lam = acc / tot;
+                    double x = (double)g[2 * (j - 1)] + lam * (double)(g[2 * j] - g[2 * (j - 1)]);
+                    double y = (double)g[2 * (j - 1) + 1] + lam * (double)(g[2 * j + 1] - g[2 * (j - 1) + 1]);
+                    uvv[q] = uv_add(c, snap(c, x), snap(c, y));
+                    if (uvv[q] == SQ_NONE) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+                }
+            }
+            i0 = i;
+            j++;
+        }
+    }
+    if (j != N + 1)
+        return sq_error_set(c->err, SQ_ERR_INTERNAL, "polyline: %u of %u grid points matched", j, N + 1);
+    return SQ_OK;
+}
+
+static sq_status boundary_map(ctx *c)
+{
+    sq_tsurf *S = &c->S;
+    const sq_omega *O = c->O;
+    const sq_metapolygon *W = &O->cut;
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    /* Omega: boundary face halfedges counterclockwise */
+    uint32_t nb = W->nbnd;
+    uint32_t *oseq = malloc((size_t)nb * sizeof *oseq);
+    uint32_t *mseq = NULL, nm = 0, capm = 0;
+    run *orun = NULL, *mrun = NULL;
+    uint32_t *pl = NULL, npl = 0, *matched = NULL, *uvv = NULL;
+    int64_t *g = NULL;
+    if (!oseq) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    {
+        uint32_t b = W->bnd_he;
+        for (uint32_t i = 0; i < nb; i++) {
+            oseq[nb - 1 - i] = W->he_twin[b];
+            b = W->he_next[b];
+        }
+        if (b != W->bnd_he) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", nb);
+            goto done;
+        }
+    }
+    /* M: boundary loop from the first cut graph halfedge */
+    uint32_t h0 = SQ_NONE;
+    for (uint32_t h = 0; h < S->nh && h0 == SQ_NONE; h++)
+        if (S->kind[h]) h0 = h;
+    {
+        uint32_t h = h0;
+        do {
+            if (nm == capm) {
+                capm = capm ? 2 * capm : 1024;
+                uint32_t *p = realloc(mseq, capm * sizeof *p);
+                if (!p) {
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                    goto done;
+                }
+                mseq = p;
+            }
+            mseq[nm++] = h;
+            h = sq_tsurf_next_boundary(S, h);
+        } while (h != h0 && nm <= S->nh);
+        if (h != h0) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "the surface boundary loop does not close");
+            goto done;
+        }
+    }
+    /* runs of equal labels; rotate both so that a run starts at index 0 */
+#define OLABEL(f) (O->he_label[W->he_twin[f]])
+    uint32_t so = 0, sm = 0;
+    while (so < nb && OLABEL(oseq[so]) == OLABEL(oseq[(so + nb - 1) % nb])) so++;
+    while (sm < nm && S->label[mseq[sm]] == S->label[mseq[(sm + nm - 1) % nm]]) sm++;
+    if (so == nb || sm == nm) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "a boundary has one label only");
+        goto done;
+    }
+    orun = malloc((size_t)nb * sizeof *orun);
+    mrun = malloc((size_t)nm * sizeof *mrun);
+    if (!orun || !mrun) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    uint32_t nor = 0, nmr = 0;
+    for (uint32_t i = 0; i < nb; i++) {
+        uint32_t f = oseq[(so + i) % nb];
+        if (i == 0 || OLABEL(f) != orun[nor - 1].label) orun[nor++] = (run){OLABEL(f), 0, 0, (so + i) % nb, 0};
+        orun[nor - 1].on++;
+    }
+    for (uint32_t i = 0; i < nm; i++) {
+        uint32_t h = mseq[(sm + i) % nm];
+        if (i == 0 || S->label[h] != mrun[nmr - 1].label) mrun[nmr++] = (run){S->label[h], (sm + i) % nm, 0, 0, 0};
+        mrun[nmr - 1].mn++;
+    }
+    if (nor != nmr) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL,
+                          "surface and domain boundaries have %u and %u labelled pieces", nmr, nor);
+        goto done;
+    }
+    uint32_t shift = 0;
+    while (shift < nor && orun[shift].label != mrun[0].label) shift++;
+    for (uint32_t i = 0; i < nor; i++)
+        if (shift == nor || orun[(i + shift) % nor].label != mrun[i].label) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL,
+                              "the surface cut is not compatible with Omega's (piece %u: label %u)", i,
+                              mrun[i].label);
+            goto done;
+        }
+    /* per M run: its Omega run */
+    for (uint32_t i = 0; i < nmr; i++) {
+        mrun[i].o0 = orun[(i + shift) % nor].o0;
+        mrun[i].on = orun[(i + shift) % nor].on;
+    }
+    /* dyadic grid */
+    {
+        int64_t mx = 1;
+        for (uint32_t v = 0; v < W->nv; v++) {
+            int64_t a = llabs(O->xy[2 * v]), b = llabs(O->xy[2 * v + 1]);
+            if (a > mx) mx = a;
+            if (b > mx) mx = b;
+        }
+        for (uint32_t l = 0; l < O->nlabels; l++) {
+            int64_t a = llabs(O->label_t[2 * l]) + llabs(O->label_t[2 * l + 1]);
+            if (a > mx) mx = a;
+        }
+        int e = 0;
+        frexp((double)(2 * mx + 2), &e);
+        c->dyadic = 50 - e;
+        if (c->dyadic > 40) c->dyadic = 40;
+        if (c->dyadic < 8) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "domain too large for exact seams");
+            goto done;
+        }
+    }
+    /* run ends, before any split changes the halfedges' heads */
+    uint32_t *run_end = malloc((size_t)nmr * sizeof *run_end);
+    if (!run_end) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t i = 0; i < nmr; i++) run_end[i] = sq_ts_head(S, mseq[(mrun[i].m0 + mrun[i].mn - 1) % nm]);
+    /* primary runs: split, UV; partner runs: exact transition */
+    uint32_t *prim_of = malloc((size_t)O->nlabels * sizeof *prim_of);
+    uint32_t **mlist = calloc(nmr, sizeof *mlist);
+    uint32_t *mlen = calloc(nmr, sizeof *mlen);
+    uint32_t **mmatch = calloc(nmr, sizeof *mmatch);
+    if (!prim_of || !mlist || !mlen || !mmatch) {
+        free(prim_of), free(mlist), free(mlen), free(mmatch), free(run_end);
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t l = 0; l < O->nlabels; l++) prim_of[l] = SQ_NONE;
+    for (uint32_t i = 0; i < nmr; i++) prim_of[mrun[i].label] = i;
+    for (uint32_t pass = 0; pass < 2 && st == SQ_OK; pass++) {
+        for (uint32_t i = 0; i < nmr && st == SQ_OK; i++) {
+            uint32_t l = mrun[i].label, lp = O->label_partner[l];
+            int primary = l < lp;
+            if ((pass == 0) != primary) continue;
+            uint32_t N = mrun[i].on;
+            uint32_t hs = mseq[mrun[i].m0];
+            uint32_t end_v = run_end[i];
+            free(pl);
+            pl = malloc((size_t)mrun[i].mn * sizeof *pl);
+            matched = realloc(matched, ((size_t)N + 1) * sizeof *matched);
+            g = realloc(g, 2 * ((size_t)N + 1) * sizeof *g);
+            if (!pl || !matched || !g) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                break;
+            }
+            for (uint32_t j = 0; j <= N; j++) {
+                uint32_t f = oseq[(mrun[i].o0 + (j < N ? j : N - 1)) % nb];
+                uint32_t ov = j < N ? W->he_vert[f] : W->he_vert[W->he_next[f]];
+                g[2 * j] = O->xy[2 * ov], g[2 * j + 1] = O->xy[2 * ov + 1];
+            }
+            if (primary) {
+                for (uint32_t e = 0; e < mrun[i].mn; e++) pl[e] = mseq[(mrun[i].m0 + e) % nm];
+                st = split_polyline(c, pl, mrun[i].mn, N, matched);
+                if (st) break;
+                if (sec_reserve(c)) {
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                    break;
+                }
+                free(pl);
+                pl = NULL;
+                st = walk_run(c, hs, end_v, &pl, &npl);
+                if (st) break;
+                uvv = realloc(uvv, ((size_t)npl + 1) * sizeof *uvv);
+                if (!uvv) {
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                    break;
+                }
+                st = polyline_uv(c, pl, npl, matched, g, N, uvv);
+                if (st) break;
+                for (uint32_t q = 0; q < npl; q++) c->sec_uv[pl[q]] = uvv[q];
+                mlist[i] = pl, mlen[i] = npl, pl = NULL;
+                mmatch[i] = malloc(((size_t)N + 1) * sizeof **mmatch);
+                if (!mmatch[i]) {
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                    break;
+                }
+                memcpy(mmatch[i], matched, ((size_t)N + 1) * sizeof *matched);
+            } else {
+                uint32_t ip = prim_of[lp];
+                if (ip == SQ_NONE || !mlist[ip]) {
+                    st = sq_error_set(err, SQ_ERR_INTERNAL, "label %u has no primary run", l);
+                    break;
+                }
+                free(pl);
+                pl = NULL;
+                st = walk_run(c, hs, end_v, &pl, &npl);
+                if (st) break;
+                if (npl != mlen[ip]) {
+                    st = sq_error_set(err, SQ_ERR_INTERNAL, "run %u: %u edges, partner %u", l, npl, mlen[ip]);
+                    break;
+                }
+                /* vertex q of this run is vertex npl - q of the partner */
+                for (uint32_t q = 0; q < npl; q++) {
+                    if (q == 0) {
+                        c->sec_uv[pl[0]] = uv_add(c, (double)g[0], (double)g[1]);
+                        continue;
+                    }
+                    uint32_t hq = mlist[ip][npl - q];
+                    double x[2] = {c->uv[2 * c->sec_uv[hq]], c->uv[2 * c->sec_uv[hq] + 1]}, y[2];
+                    transition(O, lp, x, y);
+                    c->sec_uv[pl[q]] = uv_add(c, y[0], y[1]);
+                }
+                mlist[i] = pl, mlen[i] = npl, pl = NULL;
+                mmatch[i] = malloc(((size_t)N + 1) * sizeof **mmatch);
+                if (!mmatch[i]) {
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                    break;
+                }
+                for (uint32_t j = 0; j <= N; j++) mmatch[i][j] = mmatch[ip][N - j];
+            }
+            /* Omega face halfedges -> M halfedges at the matched vertices */
+            uint32_t j = 0;
+            for (uint32_t q = 0; q < mlen[i] && j < N; q++)
+                if (S->vert[mlist[i][q]] == mmatch[i][j]) {
+                    c->o2m[oseq[(mrun[i].o0 + j) % nb]] = mlist[i][q];
+                    j++;
+                }
+            if (j != N) st = sq_error_set(err, SQ_ERR_INTERNAL, "run %u: %u of %u grid points found", l, j, N);
+        }
+    }
+    for (uint32_t i = 0; i < nmr; i++) free(mlist[i]), free(mmatch[i]);
+    free(mlist), free(mlen), free(mmatch), free(prim_of), free(run_end);
+#undef OLABEL
+done:
+    free(oseq);
+    free(mseq);
+    free(orun);
+    free(mrun);
+    free(pl);
+    free(matched);
+    free(uvv);
+    free(g);
+    return st;
+}
+
+/* ---- step 6: chords of Omega replayed on the surface ------------------ */
+
+static sq_status replay_chords(ctx *c)
+{
+    sq_tsurf *S = &c->S;
+    const sq_omega *O = c->O;
+    const sq_metapolygon *W = &O->cut;
+    const sq_omega_cells *C = &c->C;
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    uint32_t *path = NULL, npath = 0, *pl = NULL, npl = 0, *matched = NULL, *uvv = NULL;
+    int64_t *g = NULL;
+    for (uint32_t ci = 0; ci < C->nchords && st == SQ_OK; ci++) {
+        const sq_omega_chord *ch = &C->chord[ci];
+        uint32_t ms = c->o2m[ch->start_sector], me = c->o2m[ch->end_sector];
+        if (ms == SQ_NONE || me == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "chord %u: its %s sector has no surface copy", ci,
+                              ms == SQ_NONE ? "start" : "end");
+            break;
+        }
+        npath = 0;
+        if (sq_tsurf_open_sector(S, ms) < 0 || sq_tsurf_open_sector(S, me) < 0 || sec_reserve(c)) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        st = sq_tsurf_route(S, ms, SQ_ROUTE_SECTOR, 0, NULL, 0, me, &path, &npath, err);
+        if (st == SQ_ERR_INTERNAL) {
+            if (getenv("SQ_DEBUG")) fprintf(stderr, "chord %u vertex route: %s\n", ci, err ? err->msg : "");
+            npath = 0;
+            st = sq_tsurf_route_faces(S, ms, SQ_ROUTE_SECTOR, 0, NULL, 0, me, &path, &npath, err);
+            if (st == SQ_OK && sec_reserve(c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        }
+        if (st) break;
+        for (uint32_t e = 0; e < npath; e++) sq_tsurf_cut_edge(S, path[e], SQ_TS_CHORD, SQ_NONE, SQ_NONE);
+        /* the new sub-sectors at both ends keep their vertex's UV */
+        c->sec_uv[path[0]] = c->sec_uv[ms];
+        c->sec_uv[S->twin[path[npath - 1]]] = c->sec_uv[me];
+        uint32_t N = ch->len;
+        uint32_t end_v = sq_ts_head(S, path[npath - 1]);
+        matched = realloc(matched, ((size_t)N + 1) * sizeof *matched);
+        g = realloc(g, 2 * ((size_t)N + 1) * sizeof *g);
+        if (!matched || !g) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        for (uint32_t j = 0; j <= N; j++) {
+            uint32_t f = C->chord_he[ch->he_off + (j < N ? j : N - 1)];
+            uint32_t ov = j < N ? W->he_vert[f] : W->he_vert[W->he_next[f]];
+            g[2 * j] = O->xy[2 * ov], g[2 * j + 1] = O->xy[2 * ov + 1];
+        }
+        if (getenv("SQ_DEBUG")) fprintf(stderr, "chord %u: len %u path %u nv %u\n", ci, N, npath, S->nv);
+        st = split_polyline(c, path, npath, N, matched);
+        if (st) break;
+        if (sec_reserve(c)) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        /* walk the (split) path: follow the chord through its vertices */
+        free(pl);
+        pl = malloc(((size_t)npath + N + 1) * sizeof *pl);
+        if (!pl) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        npl = 0;
+        {
+            uint32_t h = path[0];
+            for (;;) {
+                pl[npl++] = h;
+                uint32_t v = sq_ts_head(S, h);
+                if (v == end_v) break;
+                /* the chord continues from v: the other chord edge at v */
+                uint32_t t = S->twin[h], q = sq_ts_ccw(S, t);
+                while (S->kind[q] != SQ_TS_CHORD || q == t) q = sq_ts_ccw(S, q);
+                h = q;
+            }
+        }
+        uvv = realloc(uvv, ((size_t)npl + 1) * sizeof *uvv);
+        if (!uvv) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        /* the path's end points keep their UVs: only its inside is new */
+        st = polyline_uv(c, pl, npl, matched, g, N, uvv);
+        if (st) break;
+        for (uint32_t q = 1; q < npl; q++) {
+            c->sec_uv[pl[q]] = uvv[q];                  /* left side  */
+            c->sec_uv[S->twin[pl[q - 1]]] = uvv[q];     /* right side */
+        }
+        /* Omega chord halfedges -> surface halfedges */
+        uint32_t j = 0, qprev = 0;
+        for (uint32_t q = 0; q <= npl && j <= N; q++) {
+            uint32_t v = q < npl ? S->vert[pl[q]] : end_v;
+            if (v != matched[j]) continue;
+            if (j < N) c->o2m[C->chord_he[ch->he_off + j]] = pl[q];
+            if (j > 0) c->o2m[W->he_twin[C->chord_he[ch->he_off + j - 1]]] = S->twin[pl[q - 1]];
+            (void)qprev;
+            qprev = q;
+            j++;
+        }
+        if (j != N + 1) st = sq_error_set(err, SQ_ERR_INTERNAL, "chord %u: %u of %u grid points", ci, j, N + 1);
+        progress(c, "cells", 0.55 + 0.15 * (ci + 1) / (double)C->nchords);
+    }
+    free(path);
+    free(pl);
+    free(matched);
+    free(uvv);
+    free(g);
+    return st;
+}
+
+/* ---- step 7: Tutte map of every cell onto its rectangle --------------- */
+
+/* mean value weight of edge (v -> w) given the halfedge h from v to w:
+ * (tan(alpha/2) + tan(beta/2)) / |v - w| with the angles at v */
+static double half_tan(const sq_tsurf *S, uint32_t v, uint32_t a, uint32_t b)
+{
+    const double *p = S->pos + 3 * v, *x = S->pos + 3 * a, *y = S->pos + 3 * b;
+    double u[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]}, w[3] = {y[0] - p[0], y[1] - p[1], y[2] - p[2]};
+    double lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), lw = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    double cs = (u[0] * w[0] + u[1] * w[1] + u[2] * w[2]) / (lu * lw);
+    if (cs > 1) cs = 1;
+    if (cs < -1) cs = -1;
+    double ang = acos(cs);
+    return tan(0.5 * ang);
+}
+
+static sq_status tutte(ctx *c, uint32_t *v_uv)
+{
+    sq_tsurf *S = &c->S;
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    uint32_t nv = S->nv;
+    uint32_t *idx = malloc((size_t)nv * sizeof *idx);
+    if (!idx) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    uint32_t n = 0;
+    for (uint32_t v = 0; v < nv; v++) idx[v] = S->v_ncut[v] ? SQ_NONE : n++;
+    size_t cap = 8 * (size_t)n + 16, nnz = 0;
+    uint32_t *ri = malloc(cap * sizeof *ri), *cj = malloc(cap * sizeof *cj);
+    double *val = malloc(cap * sizeof *val), *rhs = calloc(2 * (size_t)n + 2, sizeof *rhs),
+           *x = malloc((2 * (size_t)n + 2) * sizeof *x);
+    sq_lu *lu = NULL;
+    if (!ri || !cj || !val || !rhs || !x) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t v = 0; v < nv && st == SQ_OK; v++) {
+        if (idx[v] == SQ_NONE) continue;
+        uint32_t h0 = S->v_he[v], h = h0;
+        double diag = 0;
+        do {
+            uint32_t w = sq_ts_head(S, h);
+            /* faces on both sides of edge v-w: face(h) has third vertex
+             * tri[prev(h)]; the twin's face has tri[prev(twin h)] */
+            uint32_t a = S->vert[sq_ts_prev(S, h)], b = S->vert[sq_ts_prev(S, S->twin[h])];
+            double wt = (half_tan(S, v, w, a) + half_tan(S, v, w, b)) / dist3(S, v, w);
+            if (!(wt > 0) || !isfinite(wt)) wt = 1e-12;
+            diag += wt;
+            if (nnz + 2 > cap) {
+                cap *= 2;
+                uint32_t *r2 = realloc(ri, cap * sizeof *ri), *c2 = realloc(cj, cap * sizeof *cj);
+                double *v2 = realloc(val, cap * sizeof *val);
+                if (r2) ri = r2;
+                if (c2) cj = c2;
+                if (v2) val = v2;
+                if (!r2 || !c2 || !v2) {
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                    break;
+                }
+            }
+            if (idx[w] != SQ_NONE) {
+                ri[nnz] = idx[v], cj[nnz] = idx[w], val[nnz] = -wt, nnz++;
+            } else {
+                uint32_t sec = sq_tsurf_sector_of(S, S->twin[h]);
+                uint32_t u = sec == SQ_NONE ? SQ_NONE : c->sec_uv[sec];
+                if (u == SQ_NONE) {
+                    st = sq_error_set(err, SQ_ERR_INTERNAL, "vertex %u on the cut has no UV in its sector", w);
+                    break;
+                }
+                rhs[idx[v]] += wt * c->uv[2 * u];
+                rhs[n + idx[v]] += wt * c->uv[2 * u + 1];
+            }
+            h = sq_ts_ccw(S, h);
+        } while (h != h0);
+        ri[nnz] = idx[v], cj[nnz] = idx[v], val[nnz] = diag, nnz++;
+    }
+    if (st) goto done;
+    if (getenv("SQ_DEBUG_V")) {
+        uint32_t dv = (uint32_t)atoi(getenv("SQ_DEBUG_V"));
+        uint32_t h0 = S->v_he[dv], h = h0;
+        do {
+            uint32_t w = sq_ts_head(S, h);
+            fprintf(stderr, "  v%u -> v%u ncut %u kind %d; ", dv, w, S->v_ncut[w], S->kind[h]);
+            uint32_t h1 = S->v_he[w], h2 = h1;
+            do {
+                uint32_t x = sq_ts_head(S, h2);
+                if (S->v_ncut[x]) fprintf(stderr, " [%u:%d]", x, S->kind[h2]);
+                h2 = sq_ts_ccw(S, h2);
+            } while (h2 != h1);
+            fprintf(stderr, "\n");
+            h = sq_ts_ccw(S, h);
+        } while (h != h0);
+    }
+    if (n > 0) {
+        st = sq_lu_factor(n, nnz, ri, cj, val, &lu, err);
+        if (st == SQ_OK) st = sq_lu_solve(lu, 2, rhs, x, err);
+        if (st) goto done;
+    }
+    for (uint32_t v = 0; v < nv; v++) {
+        if (idx[v] == SQ_NONE) {
+            v_uv[v] = SQ_NONE;
+            continue;
+        }
+        v_uv[v] = uv_add(c, x[idx[v]], x[n + idx[v]]);
+        if (v_uv[v] == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+    }
+done:
+    if (lu) sq_lu_free(lu);
+    free(idx);
+    free(ri);
+    free(cj);
+    free(val);
+    free(rhs);
+    free(x);
+    return st;
+}
+
+/* ---- output ---------------------------------------------------------- */
+
+static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, sq_param *P,
+                          sq_param_stats *stats)
+{
+    sq_tsurf *S = &c->S;
+    P->nv = S->nv, P->nf = S->nf, P->nv_input = S->nv_input;
+    P->pos = malloc(3 * (size_t)S->nv * sizeof *P->pos);
+    P->tri = malloc(3 * (size_t)S->nf * sizeof *P->tri);
+    P->tri_uv = malloc(3 * (size_t)S->nf * sizeof *P->tri_uv);
+    P->he_seam = malloc(3 * (size_t)S->nf);
+    P->valence = malloc((size_t)S->nv_input * sizeof *P->valence);
+    if (!P->pos || !P->tri || !P->tri_uv || !P->he_seam || !P->valence)
+        return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    memcpy(P->pos, S->pos, 3 * (size_t)S->nv * sizeof *P->pos);
+    memcpy(P->valence, valence, (size_t)S->nv_input * sizeof *P->valence);
+    /* corner 3f + i of the output is halfedge ch[3f + i] of S */
+    uint32_t *ch = malloc(3 * (size_t)S->nf * sizeof *ch);
+    if (!ch) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    for (uint32_t f = 0; f < S->nf; f++) {
+        uint32_t h = S->f_he[f];
+        for (uint32_t i = 0; i < 3; i++, h = S->next[h]) ch[3 * f + i] = h, P->tri[3 * f + i] = S->vert[h];
+    }
+    sq_status st = SQ_OK;
+    for (uint32_t k = 0; k < 3 * S->nf; k++) {
+        uint32_t h = ch[k];
+        uint32_t v = S->vert[h];
+        uint32_t u = v_uv[v];
+        if (u == SQ_NONE) {
+            uint32_t sec = sq_tsurf_sector_of(S, h);
+            u = c->sec_uv[sec];
+        }
+        if (u == SQ_NONE) {
+            st = sq_error_set(c->err, SQ_ERR_INTERNAL, "corner %u of face %u (vertex %u) has no UV", k % 3,
+                              k / 3, v);
+            break;
+        }
+        P->tri_uv[k] = u;
+    }
+    if (st) {
+        free(ch);
+        return st;
+    }
+    /* compact the UV array to the used entries */
+    uint32_t *newi = malloc((size_t)c->nuv * sizeof *newi);
+    uint32_t *corner_of = malloc((size_t)S->nh * sizeof *corner_of);
+    if (!newi || !corner_of) {
+        free(ch), free(newi), free(corner_of);
+        return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    }
+    for (uint32_t k = 0; k < 3 * S->nf; k++) corner_of[ch[k]] = k;
+    for (uint32_t i = 0; i < c->nuv; i++) newi[i] = SQ_NONE;
+    uint32_t nu = 0;
+    for (uint32_t h = 0; h < 3 * S->nf; h++)
+        if (newi[P->tri_uv[h]] == SQ_NONE) newi[P->tri_uv[h]] = nu++;
+    P->uv = malloc(2 * (size_t)nu * sizeof *P->uv);
+    if (!P->uv) {
+        free(ch), free(newi), free(corner_of);
+        return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    }
+    for (uint32_t i = 0; i < c->nuv; i++)
+        if (newi[i] != SQ_NONE) P->uv[2 * newi[i]] = c->uv[2 * i], P->uv[2 * newi[i] + 1] = c->uv[2 * i + 1];
+    for (uint32_t h = 0; h < 3 * S->nf; h++) P->tri_uv[h] = newi[P->tri_uv[h]];
+    free(newi);
+    P->nuv = nu;
+    uint32_t seams = 0;
+    for (uint32_t k = 0; k < 3 * S->nf; k++) {
+        uint32_t h = ch[k], g = S->twin[h];
+        uint32_t kh = k, khn = corner_of[S->next[h]], kg = corner_of[g], kgn = corner_of[S->next[g]];
+        int seam = P->tri_uv[kh] != P->tri_uv[kgn] || P->tri_uv[khn] != P->tri_uv[kg];
+        P->he_seam[k] = (uint8_t)seam;
+        if (seam && h < g) seams++;
+    }
+    free(ch);
+    free(corner_of);
+    /* exact orientation of every UV triangle */
+    uint32_t bad = 0, first = SQ_NONE;
+    for (uint32_t f = 0; f < S->nf; f++) {
+        const double *a = P->uv + 2 * P->tri_uv[3 * f], *b = P->uv + 2 * P->tri_uv[3 * f + 1],
+                     *d = P->uv + 2 * P->tri_uv[3 * f + 2];
+        if (sq_orient2d(a, b, d) <= 0) {
+            if (getenv("SQ_DEBUG") && bad < 6) {
+                uint32_t h = S->f_he[f];
+                for (int e = 0; e < 3; e++, h = S->next[h])
+                    fprintf(stderr, "  bad face %u: v%u ncut %u kind(edge to next) %d label %u uv (%.17g %.17g) twinface %u\n", f, S->vert[h],
+                            S->v_ncut[S->vert[h]], S->kind[h], S->label[h], P->uv[2 * P->tri_uv[3 * f + e]],
+                            P->uv[2 * P->tri_uv[3 * f + e] + 1], S->face[S->twin[h]]);
+            }
+            if (first == SQ_NONE) first = f;
+            bad++;
+        }
+    }
+    if (stats) {
+        stats->verts_out = S->nv, stats->faces_out = S->nf;
+        stats->steiner = S->nv - S->nv_input;
+        stats->nuv = nu;
+        stats->seam_edges = seams;
+    }
+    if (bad && !getenv("SQ_PARAM_KEEP_FLIPS"))
+        return sq_error_set(c->err, SQ_ERR_INTERNAL,
+                            "%u UV triangles are not positively oriented (first: face %u)", bad, first);
+    return SQ_OK;
+}
+
+sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                         sq_param *out, sq_param_stats *stats, sq_error *err)
+{
+    double t_start = now_s();
+    sq_param_stats local;
+    if (!stats) stats = &local;
+    memset(stats, 0, sizeof *stats);
+    stats->verts_in = m->nv, stats->faces_in = m->nf;
+    sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
+    if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
+    if (st) return st;
+    ctx c;
+    memset(&c, 0, sizeof c);
+    c.m = m, c.opt = opt, c.err = err;
+    sq_tsurf_init(&c.S);
+    sq_cut_graph_init(&c.G);
+    sq_pattern_init(&c.pcw);
+    sq_omega_cells_init(&c.C);
+    c.D = calloc(1, sizeof *c.D);
+    c.T = calloc(1, sizeof *c.T);
+    c.O = calloc(1, sizeof *c.O);
+    uint32_t *hmap = malloc((size_t)m->nh * sizeof *hmap);
+    uint32_t *v_uv = NULL;
+    if (!c.D || !c.T || !c.O || !hmap) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    sq_domain_init(c.D);
+    sq_cone_tree_init(c.T);
+    sq_omega_init(c.O);
+    st = build_domain(&c, valence, stats);
+    if (st) goto done;
+    double t0 = now_s();
+    progress(&c, "cone tree", 0.3);
+    st = sq_tsurf_from_mesh(m, valence, &c.S, hmap, err);
+    if (st) goto done;
+    if (sec_reserve(&c)) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    uint32_t root_he = SQ_NONE;
+    st = cut_surface(&c, hmap, &root_he);
+    if (st == SQ_OK) st = replicate_tree(&c, root_he);
+    if (st) goto done;
+    double t1 = now_s();
+    if (getenv("SQ_DEBUG")) fprintf(stderr, "after tree: nv %u\n", c.S.nv);
+    progress(&c, "boundary map", 0.45);
+    c.o2m = malloc((size_t)c.O->cut.nh * sizeof *c.o2m);
+    if (!c.o2m || sec_reserve(&c)) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t h = 0; h < c.O->cut.nh; h++) c.o2m[h] = SQ_NONE;
+    st = boundary_map(&c);
+    if (st) goto done;
+    double t2 = now_s();
+    if (getenv("SQ_DEBUG")) fprintf(stderr, "after boundary: nv %u\n", c.S.nv);
+    progress(&c, "cells", 0.55);
+    st = sq_omega_cells_build(c.O, &c.C, err);
+    if (st == SQ_OK) st = replay_chords(&c);
+    if (st) goto done;
+    stats->chords = c.C.nchords, stats->cells = c.C.ncells;
+    if (getenv("SQ_DEBUG")) {
+        sq_tsurf *S = &c.S;
+        uint32_t *cell = malloc(S->nf * sizeof *cell), *q = malloc(S->nf * sizeof *q), nc = 0;
+        for (uint32_t f = 0; f < S->nf; f++) cell[f] = SQ_NONE;
+        for (uint32_t f0 = 0; f0 < S->nf; f0++) {
+            if (cell[f0] != SQ_NONE) continue;
+            uint32_t nq = 0;
+            cell[f0] = nc, q[nq++] = f0;
+            double bx[4] = {1e300, 1e300, -1e300, -1e300};
+            uint32_t nfc = 0, nbe = 0;
+            for (uint32_t i = 0; i < nq; i++) {
+                nfc++;
+                uint32_t h = S->f_he[q[i]];
+                for (int e = 0; e < 3; e++, h = S->next[h]) {
+                    if (S->kind[h]) {
+                        nbe++;
+                        uint32_t u = c.sec_uv[sq_tsurf_sector_of(S, h)];
+                        if (u != SQ_NONE) {
+                            double x = c.uv[2 * u], y = c.uv[2 * u + 1];
+                            if (x < bx[0]) bx[0] = x;
+                            if (y < bx[1]) bx[1] = y;
+                            if (x > bx[2]) bx[2] = x;
+                            if (y > bx[3]) bx[3] = y;
+                        } else fprintf(stderr, "   cell %u: sector without uv\n", nc);
+                        continue;
+                    }
+                    uint32_t g = S->face[S->twin[h]];
+                    if (cell[g] == SQ_NONE) cell[g] = nc, q[nq++] = g;
+                }
+            }
+            fprintf(stderr, "M cell %u: %u faces, %u boundary edges, box [%g %g]x[%g %g]\n", nc, nfc, nbe, bx[0], bx[2], bx[1], bx[3]);
+            {
+                uint32_t hb = SQ_NONE;
+                for (uint32_t i = 0; i < nq && hb == SQ_NONE; i++) {
+                    uint32_t h = S->f_he[q[i]];
+                    for (int e = 0; e < 3; e++, h = S->next[h])
+                        if (S->kind[h]) hb = h;
+                }
+                double area = 0;
+                uint32_t cnt = 0, h = hb, nback = 0;
+                do {
+                    uint32_t u0 = c.sec_uv[sq_tsurf_sector_of(S, h)];
+                    uint32_t h2 = sq_tsurf_next_boundary(S, h);
+                    uint32_t u1 = c.sec_uv[sq_tsurf_sector_of(S, h2)];
+                    uint32_t h3 = sq_tsurf_next_boundary(S, h2);
+                    uint32_t u2 = c.sec_uv[sq_tsurf_sector_of(S, h3)];
+                    double ax = c.uv[2 * u0], ay = c.uv[2 * u0 + 1], bx2 = c.uv[2 * u1], by = c.uv[2 * u1 + 1];
+                    double cx = c.uv[2 * u2], cy = c.uv[2 * u2 + 1];
+                    area += ax * by - bx2 * ay;
+                    double dot = (bx2 - ax) * (cx - bx2) + (by - ay) * (cy - by);
+                    if (dot < 0) {
+                        nback++;
+                        if (nback < 4) fprintf(stderr, "    backtrack at v%u (%g %g) -> v%u (%g %g) -> v%u (%g %g) kinds %d %d\n", S->vert[h], ax, ay, S->vert[h2], bx2, by, S->vert[h3], cx, cy, S->kind[h], S->kind[h2]);
+                    }
+                    h = h2;
+                    cnt++;
+                } while (h != hb && cnt < 100000);
+                fprintf(stderr, "    loop %u edges, area %g, backtracks %u\n", cnt, 0.5 * area, nback);
+            }
+            nc++;
+        }
+        for (uint32_t i = 0; i < c.C.ncells; i++)
+            fprintf(stderr, "O cell %u: box [%lld %lld]x[%lld %lld]\n", i, (long long)c.C.cell_box[4 * i],
+                    (long long)c.C.cell_box[4 * i + 2], (long long)c.C.cell_box[4 * i + 1], (long long)c.C.cell_box[4 * i + 3]);
+        free(cell), free(q);
+    }
+    if (sq_tsurf_split_blocking(&c.S, 0) < 0 || sec_reserve(&c)) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    double t3 = now_s();
+    if (getenv("SQ_DEBUG")) fprintf(stderr, "after chords: nv %u\n", c.S.nv);
+    progress(&c, "tutte", 0.7);
+    v_uv = malloc((size_t)c.S.nv * sizeof *v_uv);
+    if (!v_uv) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    st = tutte(&c, v_uv);
+    if (st) goto done;
+    double t4 = now_s();
+    progress(&c, "check", 0.9);
+    st = assemble(&c, v_uv, valence, out, stats);
+    if (st) goto done;
+    out->domain = c.D, out->tree = c.T, out->omega = c.O;
+    c.D = NULL, c.T = NULL, c.O = NULL;
+    double t5 = now_s();
+    stats->t_tree = t1 - t0;
+    stats->t_boundary = t2 - t1;
+    stats->t_cells = t3 - t2;
+    stats->t_tutte = t4 - t3;
+    stats->t_check = t5 - t4;
+    stats->t_total = t5 - t_start;
+    progress(&c, "done", 1.0);
+done:
+    if (st) sq_param_free(out);
+    sq_tsurf_free(&c.S);
+    sq_cut_graph_free(&c.G);
+    sq_pattern_free(&c.pcw);
+    sq_omega_cells_free(&c.C);
+    if (c.D) sq_domain_free(c.D);
+    if (c.T) sq_cone_tree_free(c.T);
+    if (c.O) sq_omega_free(c.O);
+    free(c.D);
+    free(c.T);
+    free(c.O);
+    free(c.o2m);
+    free(c.sec_uv);
+    free(c.uv);
+    free(hmap);
+    free(v_uv);
+    return st;
+}

@@ -1,0 +1,132 @@
+/* seamquad: seamless parametrization of a closed surface (seed 7, 8, 9):
+ * the surface cut graph, the combinatorial domain for its side pattern, the
+ * flat domain Omega, the compatible cone tree on the surface, the boundary
+ * map by normalized arc length, and a bijective interior map.
+ *
+ * Pipeline (sq_param_build):
+ *  1. cut graph of M (seed 7, 9.1; sq_cut_graph.h): a disk M^c whose side
+ *     pattern is handed to the domain construction;
+ *  2. domain Q for that pattern and the cone valences (sq_domain.h);
+ *  3. cone tree in Q and the flat domain Omega (sq_omega.h);
+ *  4. the same tree on M^c, path by path in the tree's rotation order, with
+ *     Steiner vertices by edge splits where paths would block each other
+ *     (seed 7, [SAPH04]);
+ *  5. boundary map by normalized arc length between corresponding corners
+ *     (seed 8), seam UVs snapped to a dyadic grid so that every transition
+ *     is exact in floating point (seamless-notes 5);
+ *  6. Omega cut into rectangles by chords (sq_omega_cells.h), the chords
+ *     replayed as paths on the surface, and every surface cell mapped onto
+ *     its rectangle by a Tutte embedding (convex target: bijective);
+ *  7. exact checks: every UV triangle positively oriented (exact predicate
+ *     on the stored doubles), every seam transition exact.
+ *
+ * The output mesh keeps the input's vertices first, in order, with their
+ * coordinates; added (Steiner) vertices lie on edges or inside faces of the
+ * input.
+ *
+ * The library never prints or exits. */
+#ifndef SQ_PARAM_H
+#define SQ_PARAM_H
+
+#include <stdint.h>
+
+#include "sq_error.h"
+#include "sq_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sq_param_options {
+    uint64_t seed; /* seeds the cut graph's sampling (default 1) */
+    /* Optional progress report: stage name and the fraction of the whole
+     * run done (0..1). Called a handful of times per stage. */
+    void (*progress)(void *ctx, const char *stage, double fraction);
+    void *progress_ctx;
+} sq_param_options;
+
+void sq_param_options_default(sq_param_options *opt);
+
+typedef struct sq_param_stats {
+    uint32_t genus, ncones;
+    uint32_t verts_in, faces_in;
+    uint32_t verts_out, faces_out, steiner; /* steiner = verts_out - verts_in */
+    uint32_t nuv;                           /* distinct UV points            */
+    uint32_t cut_edges;                     /* edges of the surface cut graph */
+    uint64_t quads_unpadded, quads_added;   /* the domain Q                   */
+    uint32_t tree_edges, tree_segments;     /* cone tree in Q                 */
+    uint32_t chords, cells;                 /* rectangles of Omega            */
+    uint32_t seam_edges;                    /* output edges with two UV copies */
+    /* distortion of the final map (per triangle, area-weighted mean and
+     * max): symmetric Dirichlet energy after the best global scale, and the
+     * conformal ratio sigma1/sigma2 */
+    double sym_dirichlet_mean, sym_dirichlet_max;
+    double conformal_mean, conformal_max;
+    /* seconds per step */
+    double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
+} sq_param_stats;
+
+/* The result: a triangle mesh (input vertices first) with UVs per corner.
+ * Arrays are owned by the struct (sq_param_free). */
+typedef struct sq_param {
+    uint32_t nv, nf, nuv;
+    uint32_t nv_input;  /* the first nv_input vertices are the input's     */
+    double *pos;        /* 3 nv                                            */
+    uint32_t *tri;      /* 3 nf, counterclockwise as in the input          */
+    uint32_t *tri_uv;   /* 3 nf: UV index of each corner                   */
+    double *uv;         /* 2 nuv                                           */
+    uint8_t *he_seam;   /* 3 nf: 1 where the edge from corner i to i+1 of  */
+                        /* a face is a seam (its two sides have different   */
+                        /* UVs)                                            */
+    int32_t *valence;   /* nv_input: the prescribed valences (4 = regular) */
+    /* The combinatorial domain and Omega, kept for pictures
+     * (sq_domain_write_svg, sq_omega_write_svg); opaque here. */
+    void *domain;       /* sq_domain *                                     */
+    void *tree;         /* sq_cone_tree *                                  */
+    void *omega;        /* sq_omega *                                      */
+} sq_param;
+
+void sq_param_init(sq_param *P);
+void sq_param_free(sq_param *P);
+
+/* Builds the parametrization of the closed, connected triangle mesh m for
+ * the per-vertex valences (valence[v] = 4 for a regular vertex; a cone of
+ * angle k*pi/2 has valence k). The cone set must pass sq_cones_check_*:
+ * SQ_ERR_UNREALIZABLE (valence 1, the torus {3,5}) and Gauss-Bonnet
+ * violations are reported before any work. stats and opt may be NULL. */
+sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                         sq_param *out, sq_param_stats *stats, sq_error *err);
+
+enum {
+    /* sq_param_verify: transitions must be exact with integer translations
+     * and cone points must have integer UVs (an integer grid map) */
+    SQ_PARAM_VERIFY_INTEGER = 1u << 0
+};
+
+/* Independent check of P (for tests and the CLI): every UV triangle has
+ * positive orientation by the exact predicate; across every edge the two
+ * UV copies are related by a rotation by a multiple of 90 degrees plus a
+ * translation (exactly, and integer with SQ_PARAM_VERIFY_INTEGER), one
+ * transition per seam curve; UV angle sums are valence * pi/2 at input
+ * vertices and 2 pi at added ones (1e-9 relative). SQ_ERR_INTERNAL names
+ * the first violation (face, vertex, edge; 0-based). Also checked: indices
+ * in range, finite UVs, the triangles form a closed oriented manifold, each
+ * UV point is used by one vertex only, he_seam (when not NULL) matches the
+ * UV indices. valence may be NULL (no cones). A seam curve is a maximal
+ * chain of seam edges through non-cone vertices with two seam edges, as in
+ * shared/tools/check_param.py; exactness is decided without tolerance
+ * (sq_param_io.c explains how). */
+sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err);
+
+/* Writes P as OBJ (v, vt, f a/ta b/tb c/tc), atomically (no partial file on
+ * error). */
+sq_status sq_param_write_obj(const char *path, const sq_param *P, sq_error *err);
+
+/* SVG of the UV layout: triangles (thin), seams coloured by transition,
+ * cone points by valence. */
+sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,133 @@
+#!/usr/bin/env bash
+# End-to-end tests of `seamquad param` (issue 4): every cone file of a closed
+# mesh in ../shared/data (all of mpz/ and cid/elephant) gives a
+# parametrization that the referee passes with --integer
+# (shared/tools/check_param.py MESH CONES OUT.obj --integer), with complete
+# --json stats and SVGs; mpz/twirl's valence-1 cone is refused with a message
+# naming the vertex, and nothing is written. Bad input (arguments, a missing
+# cones file, Gauss-Bonnet, an unrealizable cone set, a broken mesh) and an
+# unwritable output give the documented exit code and write nothing.
+# Prints PASS/FAIL per model and a total.
+set -u
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${SQ_BIN:-$root/build/bin/seamquad}
+shared=${SQ_SHARED_DIR:-$root/../shared}
+data=${SQ_TEST_DATA_DIR:-$root/tests/data}
+referee=$shared/tools/check_param.py
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# --- every cone file of a closed mesh ----------------------------------------
+while IFS=$'\t' read -r file _ _ _ _ _ _ closed genus cones _; do
+  [ "$file" = file ] && continue
+  [ "$closed" = yes ] && [ "$cones" != - ] || continue
+  mesh=$shared/data/$file
+  cfile=$(dirname "$mesh")/$cones
+  name=$(basename "$file" .obj)
+  out=$tmp/$name
+  "$bin" param "$mesh" --cones "$cfile" -o "$out.obj" --svg "$out.svg" --domain-svg "$out.omega.svg" \
+    --json --quiet >"$out.json" 2>"$out.err"
+  rc=$?
+  if [ "$name" = twirl ]; then
+    if [ $rc -eq 1 ] && grep -q "vertex 4865 has a cone of valence 1" "$out.err" \
+        && [ -z "$(ls -A "$tmp" | grep "^twirl\.\(obj\|svg\|omega\.svg\)$")" ] \
+        && [ -z "$(ls -A "$tmp" | grep partial)" ]; then
+      ok; echo "PASS $file: refused (valence-1 cone at vertex 4865), nothing written"
+    else
+      bad "$file: exit $rc, expected 1 naming the valence-1 vertex 4865: $(cat "$out.err")"
+    fi
+    continue
+  fi
+  if [ $rc -ne 0 ]; then
+    bad "$file: exit $rc: $(tail -1 "$out.err")"
+    continue
+  fi
+  if ! python3 "$referee" "$mesh" "$cfile" "$out.obj" --integer >"$out.ref" 2>&1; then
+    bad "$file: referee: $(tail -1 "$out.ref")"
+    continue
+  fi
+  if ! python3 - "$out.json" "$genus" <<'PY'; then bad "$file: --json stats"; continue; fi
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["ok"] and j["genus"] == int(sys.argv[2]), j
+assert j["verts_out"] == j["verts_in"] + j["steiner"], j
+assert j["faces_out"] >= j["faces_in"] and j["seam_edges"] > 0 and j["uv_points"] > 0, j
+assert j["quads"] == j["quads_before_padding"] + j["quads_added_by_padding"] > 0, j
+assert j["peak_rss_mb"] > 0 and j["time_s"]["total"] > 0, j
+assert len(j["outputs"]) == 3, j
+PY
+  if [ -s "$out.svg" ] && [ -s "$out.omega.svg" ] && head -c 4 "$out.svg" | grep -q "<svg"; then
+    ok; echo "PASS $file: $(tail -1 "$out.ref")"
+  else
+    bad "$file: missing SVG"
+  fi
+done <"$shared/data/MANIFEST.tsv"
+
+# --- random admissible cone sets on meshes without cones (CI subset of
+# scripts/param_sweep.sh): genus 0, 1, 2, 3, one seed each -----------------
+for m in libigl/decimated-knight.off odedstein/torus.obj gpjs/double-torus.obj libigl/3holes.off; do
+  mesh=$shared/data/$m
+  base=$tmp/rand_$(basename "$m" | sed 's/\.[^.]*$//')
+  python3 "$root/scripts/random_cones.py" "$mesh" "${base}_Th_hat" --seed 7 >/dev/null \
+    || { bad "$m: random_cones.py"; continue; }
+  if "$bin" param "$mesh" --cones "${base}_Th_hat" -o "$base.obj" --seed 7 --quiet >/dev/null 2>"$base.err" \
+      && python3 "$referee" "$mesh" "${base}_Th_hat" "$base.obj" --integer >"$base.ref" 2>&1; then
+    ok; echo "PASS $m (random cones): $(tail -1 "$base.ref")"
+  else
+    bad "$m (random cones): $(tail -1 "$base.err") $(tail -1 "$base.ref" 2>/dev/null)"
+  fi
+done
+
+# --- errors: exit code, message, nothing written ------------------------------
+nothing_written() { [ -z "$(ls -A "$tmp/e" 2>/dev/null)" ]; }
+mkdir -p "$tmp/e"
+knot=$shared/data/mpz/knot1.obj
+knot_cones=$shared/data/mpz/knot1_Th_hat
+expect() { # expect NAME CODE SUBSTRING -- ARGS...
+  local name=$1 code=$2 sub=$3
+  shift 4
+  "$bin" param "$@" >"$tmp/out.txt" 2>"$tmp/err.txt"
+  local rc=$?
+  if [ $rc -eq "$code" ] && grep -q -- "$sub" "$tmp/err.txt" && nothing_written; then
+    ok; echo "PASS $name"
+  else
+    bad "$name: exit $rc (want $code), stderr: $(head -c 400 "$tmp/err.txt"); written: $(ls -A "$tmp/e")"
+  fi
+  rm -rf "$tmp/e" && mkdir -p "$tmp/e"
+}
+expect "no arguments" 2 "give MESH" --
+expect "missing -o" 2 "give MESH" -- "$knot" --cones "$knot_cones"
+expect "missing --cones" 2 "give MESH" -- "$knot" -o "$tmp/e/x.obj"
+expect "unknown option" 2 "unknown option" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --bogus
+expect "bad --seed" 2 "seed" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --seed x
+expect "two meshes" 2 "unexpected argument" -- "$knot" "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj"
+expect "same output twice" 2 "two outputs" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --svg "$tmp/e/x.obj"
+expect "missing cones file" 1 "no_such_cones" -- "$knot" --cones "$tmp/no_such_cones" -o "$tmp/e/x.obj"
+expect "missing mesh" 1 "no_such_mesh" -- "$tmp/no_such_mesh.obj" --cones "$knot_cones" -o "$tmp/e/x.obj"
+expect "cones of another mesh" 1 "$shared/data/mpz/helmet_Th_hat" -- "$knot" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/e/x.obj"
+expect "unwritable output" 1 "$tmp/e/nodir/x.obj" -- "$knot" --cones "$knot_cones" -o "$tmp/e/nodir/x.obj"
+expect "unwritable svg" 1 "$tmp/e/nodir/x.svg" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --svg "$tmp/e/nodir/x.svg"
+# the broken inputs of tests/data/broken/EXPECTED.tsv: the same errors as check
+while IFS=$'\t' read -r mesh cones status sub; do
+  case "$mesh" in \#*|"") continue ;; esac
+  if [ "$cones" = - ]; then c=$knot_cones; else c=$root/$cones; fi
+  expect "$(basename "$mesh") + $(basename "$c") ($status)" 1 "$sub" -- "$root/$mesh" --cones "$c" \
+    -o "$tmp/e/x.obj" --svg "$tmp/e/x.svg"
+done <"$data/broken/EXPECTED.tsv"
+# --json reports the error too
+"$bin" param "$root/tests/data/torus.obj" --cones "$data/broken/torus_gauss_bonnet.cones" -o "$tmp/e/x.obj" \
+  --json >"$tmp/gb.json" 2>/dev/null
+python3 -c '
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert not j["ok"] and j["error"]["code"] == "gauss-bonnet", j' "$tmp/gb.json" && nothing_written \
+  && { ok; echo "PASS --json error"; } || bad "--json error: $(cat "$tmp/gb.json")"
+"$bin" param --help | grep -q "check_param.py" && { ok; echo "PASS --help"; } || bad "--help"
+"$bin" --help | grep -q "param .*parametrization" && { ok; echo "PASS listed"; } || bad "not listed in seamquad --help"
+
+echo "cli_param: $pass passed, $fail failed"
+[ $fail -eq 0 ]
