@@ -175,7 +175,7 @@ static sq_status add_chord(builder *B, uint32_t h1, sq_error *err)
 {
     const sq_metapolygon *P = B->P;
     sq_omega_cells *C = B->C;
-    uint32_t len, last = trace(B, h1, &len), eb = SQ_NONE;
+    uint32_t len = 0, last = trace(B, h1, &len), eb = SQ_NONE;
     if (last != SQ_NONE) (void)end_gain(B, last, &eb);
     uint32_t sb = sector_bound(B, h1);
     if (sb == SQ_NONE || eb == SQ_NONE)

@@ -7,7 +7,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <stdio.h>
 #include <time.h>
 
 #include "sq_cones.h"
@@ -71,6 +70,7 @@ typedef struct ctx {
     double *uv;
     uint32_t nuv, cap_uv;
     int dyadic;          /* seam UVs are multiples of 2^-dyadic             */
+    int keep_flips;      /* debugging: return a map with flips (tests)     */
 } ctx;
 
 static void progress(ctx *c, const char *stage, double f)
@@ -102,6 +102,22 @@ static uint32_t uv_add(ctx *c, double u, double v)
     c->uv[2 * c->nuv] = u;
     c->uv[2 * c->nuv + 1] = v;
     return c->nuv++;
+}
+
+/* Steiner vertex budget: beyond it the cut paths are refining the surface
+ * without end (regions too narrow for the domain's combinatorics) */
+static int over_budget(const ctx *c)
+{
+    return c->S.nv > 10u * c->S.nv_input + 100000u;
+}
+
+static sq_status budget_error(ctx *c, const char *stage)
+{
+    return sq_error_set(c->err, SQ_ERR_SOLVER,
+                        "%s: more than %u Steiner vertices were needed (input %u vertices); the "
+                        "surface cut is too far from the domain's shape (seed 9 geometric guidance "
+                        "is not implemented yet)",
+                        stage, 9u * c->S.nv_input + 100000u, c->S.nv_input);
 }
 
 static double snap(const ctx *c, double x) { return ldexp(nearbyint(ldexp(x, c->dyadic)), -c->dyadic); }
@@ -252,8 +268,15 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
     uint32_t qs = O->root_side;
     uint32_t s_r = k - 1 - (qs + c->r) % k;
     uint32_t a = G->side_off[s_r], n = G->side_off[s_r + 1] - a;
-    if (O->root_pos == 0)
-        return sq_error_set(c->err, SQ_ERR_INTERNAL, "the cone tree's root is a corner of Q");
+    if (O->root_pos == 0) {
+        /* the root is Q's corner qs = the start of counterclockwise side
+         * (k - (qs + r)) mod k; no side is split (the genus-0 slit) */
+        uint32_t sc = (k - (qs + c->r) % k) % k;
+        if (O->nlabels != k + 2 * c->T->nseg)
+            return sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega splits a side at a corner root");
+        *root_he = hmap[G->side_he[G->side_off[sc]]];
+        return SQ_OK;
+    }
     if (n == 1) { /* split the side's only edge */
         if (sq_tsurf_split_edge(S, hmap[G->side_he[a]], 0.5) == SQ_NONE)
             return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
@@ -384,11 +407,12 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
                             is_cone_node ? (int32_t)Q->v_nface[qend] : 4, free_cone, tlen, SQ_NONE,
                             &path, &npath, err);
         if (st == SQ_ERR_INTERNAL) {
-            if (getenv("SQ_DEBUG")) fprintf(stderr, "segment %u vertex route: %s\n", s, err ? err->msg : "");
             npath = 0;
             st = sq_tsurf_route_faces(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
                                       is_cone_node ? (int32_t)Q->v_nface[qend] : 4, free_cone, tlen,
                                       SQ_NONE, &path, &npath, err);
+        }
+        if (st == SQ_OK) {
             fc = realloc(free_cone, S->cap_v);
             if (!fc || sec_reserve(c)) {
                 st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
@@ -398,6 +422,10 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
             for (uint32_t v = S->nv; v-- > 0 && v >= S->nv_input;) free_cone[v] = 0;
         }
         if (st) goto done;
+        if (over_budget(c)) {
+            st = budget_error(c, "cone tree");
+            goto done;
+        }
         uint32_t lab = c->k + 2 * s;
         for (uint32_t e = 0; e < npath; e++) sq_tsurf_cut_edge(S, path[e], SQ_TS_SEAM, lab, lab + 1);
         uint32_t vend = sq_ts_head(S, path[npath - 1]);
@@ -817,6 +845,10 @@ static sq_status replay_chords(ctx *c)
     int64_t *g = NULL;
     for (uint32_t ci = 0; ci < C->nchords && st == SQ_OK; ci++) {
         const sq_omega_chord *ch = &C->chord[ci];
+        if (over_budget(c)) {
+            st = budget_error(c, "cells");
+            break;
+        }
         uint32_t ms = c->o2m[ch->start_sector], me = c->o2m[ch->end_sector];
         if (ms == SQ_NONE || me == SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "chord %u: its %s sector has no surface copy", ci,
@@ -829,8 +861,8 @@ static sq_status replay_chords(ctx *c)
             break;
         }
         st = sq_tsurf_route(S, ms, SQ_ROUTE_SECTOR, 0, NULL, 0, me, &path, &npath, err);
+        if (st == SQ_OK && sec_reserve(c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         if (st == SQ_ERR_INTERNAL) {
-            if (getenv("SQ_DEBUG")) fprintf(stderr, "chord %u vertex route: %s\n", ci, err ? err->msg : "");
             npath = 0;
             st = sq_tsurf_route_faces(S, ms, SQ_ROUTE_SECTOR, 0, NULL, 0, me, &path, &npath, err);
             if (st == SQ_OK && sec_reserve(c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
@@ -853,7 +885,6 @@ static sq_status replay_chords(ctx *c)
             uint32_t ov = j < N ? W->he_vert[f] : W->he_vert[W->he_next[f]];
             g[2 * j] = O->xy[2 * ov], g[2 * j + 1] = O->xy[2 * ov + 1];
         }
-        if (getenv("SQ_DEBUG")) fprintf(stderr, "chord %u: len %u path %u nv %u\n", ci, N, npath, S->nv);
         st = split_polyline(c, path, npath, N, matched);
         if (st) break;
         if (sec_reserve(c)) {
@@ -893,14 +924,12 @@ static sq_status replay_chords(ctx *c)
             c->sec_uv[S->twin[pl[q - 1]]] = uvv[q];     /* right side */
         }
         /* Omega chord halfedges -> surface halfedges */
-        uint32_t j = 0, qprev = 0;
+        uint32_t j = 0;
         for (uint32_t q = 0; q <= npl && j <= N; q++) {
             uint32_t v = q < npl ? S->vert[pl[q]] : end_v;
             if (v != matched[j]) continue;
             if (j < N) c->o2m[C->chord_he[ch->he_off + j]] = pl[q];
             if (j > 0) c->o2m[W->he_twin[C->chord_he[ch->he_off + j - 1]]] = S->twin[pl[q - 1]];
-            (void)qprev;
-            qprev = q;
             j++;
         }
         if (j != N + 1) st = sq_error_set(err, SQ_ERR_INTERNAL, "chord %u: %u of %u grid points", ci, j, N + 1);
@@ -990,22 +1019,6 @@ static sq_status tutte(ctx *c, uint32_t *v_uv)
         ri[nnz] = idx[v], cj[nnz] = idx[v], val[nnz] = diag, nnz++;
     }
     if (st) goto done;
-    if (getenv("SQ_DEBUG_V")) {
-        uint32_t dv = (uint32_t)atoi(getenv("SQ_DEBUG_V"));
-        uint32_t h0 = S->v_he[dv], h = h0;
-        do {
-            uint32_t w = sq_ts_head(S, h);
-            fprintf(stderr, "  v%u -> v%u ncut %u kind %d; ", dv, w, S->v_ncut[w], S->kind[h]);
-            uint32_t h1 = S->v_he[w], h2 = h1;
-            do {
-                uint32_t x = sq_ts_head(S, h2);
-                if (S->v_ncut[x]) fprintf(stderr, " [%u:%d]", x, S->kind[h2]);
-                h2 = sq_ts_ccw(S, h2);
-            } while (h2 != h1);
-            fprintf(stderr, "\n");
-            h = sq_ts_ccw(S, h);
-        } while (h != h0);
-    }
     if (n > 0) {
         st = sq_lu_factor(n, nnz, ri, cj, val, &lu, err);
         if (st == SQ_OK) st = sq_lu_solve(lu, 2, rhs, x, err);
@@ -1114,13 +1127,6 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
         const double *a = P->uv + 2 * P->tri_uv[3 * f], *b = P->uv + 2 * P->tri_uv[3 * f + 1],
                      *d = P->uv + 2 * P->tri_uv[3 * f + 2];
         if (sq_orient2d(a, b, d) <= 0) {
-            if (getenv("SQ_DEBUG") && bad < 6) {
-                uint32_t h = S->f_he[f];
-                for (int e = 0; e < 3; e++, h = S->next[h])
-                    fprintf(stderr, "  bad face %u: v%u ncut %u kind(edge to next) %d label %u uv (%.17g %.17g) twinface %u\n", f, S->vert[h],
-                            S->v_ncut[S->vert[h]], S->kind[h], S->label[h], P->uv[2 * P->tri_uv[3 * f + e]],
-                            P->uv[2 * P->tri_uv[3 * f + e] + 1], S->face[S->twin[h]]);
-            }
             if (first == SQ_NONE) first = f;
             bad++;
         }
@@ -1131,9 +1137,13 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
         stats->nuv = nu;
         stats->seam_edges = seams;
     }
-    if (bad && !getenv("SQ_PARAM_KEEP_FLIPS"))
-        return sq_error_set(c->err, SQ_ERR_INTERNAL,
-                            "%u UV triangles are not positively oriented (first: face %u)", bad, first);
+    if (bad && !c->keep_flips)
+        return sq_error_set(c->err, SQ_ERR_SOLVER,
+                            "the interior map is not injective in floating point: %u of %u UV "
+                            "triangles are not positively oriented (first: face %u); Tutte's map "
+                            "squeezes narrow parts of a cell below double precision (docs/param.md, "
+                            "Limits)",
+                            bad, S->nf, first);
     return SQ_OK;
 }
 
@@ -1151,6 +1161,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     ctx c;
     memset(&c, 0, sizeof c);
     c.m = m, c.opt = opt, c.err = err;
+    c.keep_flips = opt ? opt->allow_flips : 0;
     sq_tsurf_init(&c.S);
     sq_cut_graph_init(&c.G);
     sq_pattern_init(&c.pcw);
@@ -1179,10 +1190,10 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     }
     uint32_t root_he = SQ_NONE;
     st = cut_surface(&c, hmap, &root_he);
+    if (st == SQ_OK && sec_reserve(&c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
     if (st == SQ_OK) st = replicate_tree(&c, root_he);
     if (st) goto done;
     double t1 = now_s();
-    if (getenv("SQ_DEBUG")) fprintf(stderr, "after tree: nv %u\n", c.S.nv);
     progress(&c, "boundary map", 0.45);
     c.o2m = malloc((size_t)c.O->cut.nh * sizeof *c.o2m);
     if (!c.o2m || sec_reserve(&c)) {
@@ -1193,84 +1204,16 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     st = boundary_map(&c);
     if (st) goto done;
     double t2 = now_s();
-    if (getenv("SQ_DEBUG")) fprintf(stderr, "after boundary: nv %u\n", c.S.nv);
     progress(&c, "cells", 0.55);
     st = sq_omega_cells_build(c.O, &c.C, err);
     if (st == SQ_OK) st = replay_chords(&c);
     if (st) goto done;
     stats->chords = c.C.nchords, stats->cells = c.C.ncells;
-    if (getenv("SQ_DEBUG")) {
-        sq_tsurf *S = &c.S;
-        uint32_t *cell = malloc(S->nf * sizeof *cell), *q = malloc(S->nf * sizeof *q), nc = 0;
-        for (uint32_t f = 0; f < S->nf; f++) cell[f] = SQ_NONE;
-        for (uint32_t f0 = 0; f0 < S->nf; f0++) {
-            if (cell[f0] != SQ_NONE) continue;
-            uint32_t nq = 0;
-            cell[f0] = nc, q[nq++] = f0;
-            double bx[4] = {1e300, 1e300, -1e300, -1e300};
-            uint32_t nfc = 0, nbe = 0;
-            for (uint32_t i = 0; i < nq; i++) {
-                nfc++;
-                uint32_t h = S->f_he[q[i]];
-                for (int e = 0; e < 3; e++, h = S->next[h]) {
-                    if (S->kind[h]) {
-                        nbe++;
-                        uint32_t u = c.sec_uv[sq_tsurf_sector_of(S, h)];
-                        if (u != SQ_NONE) {
-                            double x = c.uv[2 * u], y = c.uv[2 * u + 1];
-                            if (x < bx[0]) bx[0] = x;
-                            if (y < bx[1]) bx[1] = y;
-                            if (x > bx[2]) bx[2] = x;
-                            if (y > bx[3]) bx[3] = y;
-                        } else fprintf(stderr, "   cell %u: sector without uv\n", nc);
-                        continue;
-                    }
-                    uint32_t g = S->face[S->twin[h]];
-                    if (cell[g] == SQ_NONE) cell[g] = nc, q[nq++] = g;
-                }
-            }
-            fprintf(stderr, "M cell %u: %u faces, %u boundary edges, box [%g %g]x[%g %g]\n", nc, nfc, nbe, bx[0], bx[2], bx[1], bx[3]);
-            {
-                uint32_t hb = SQ_NONE;
-                for (uint32_t i = 0; i < nq && hb == SQ_NONE; i++) {
-                    uint32_t h = S->f_he[q[i]];
-                    for (int e = 0; e < 3; e++, h = S->next[h])
-                        if (S->kind[h]) hb = h;
-                }
-                double area = 0;
-                uint32_t cnt = 0, h = hb, nback = 0;
-                do {
-                    uint32_t u0 = c.sec_uv[sq_tsurf_sector_of(S, h)];
-                    uint32_t h2 = sq_tsurf_next_boundary(S, h);
-                    uint32_t u1 = c.sec_uv[sq_tsurf_sector_of(S, h2)];
-                    uint32_t h3 = sq_tsurf_next_boundary(S, h2);
-                    uint32_t u2 = c.sec_uv[sq_tsurf_sector_of(S, h3)];
-                    double ax = c.uv[2 * u0], ay = c.uv[2 * u0 + 1], bx2 = c.uv[2 * u1], by = c.uv[2 * u1 + 1];
-                    double cx = c.uv[2 * u2], cy = c.uv[2 * u2 + 1];
-                    area += ax * by - bx2 * ay;
-                    double dot = (bx2 - ax) * (cx - bx2) + (by - ay) * (cy - by);
-                    if (dot < 0) {
-                        nback++;
-                        if (nback < 4) fprintf(stderr, "    backtrack at v%u (%g %g) -> v%u (%g %g) -> v%u (%g %g) kinds %d %d\n", S->vert[h], ax, ay, S->vert[h2], bx2, by, S->vert[h3], cx, cy, S->kind[h], S->kind[h2]);
-                    }
-                    h = h2;
-                    cnt++;
-                } while (h != hb && cnt < 100000);
-                fprintf(stderr, "    loop %u edges, area %g, backtracks %u\n", cnt, 0.5 * area, nback);
-            }
-            nc++;
-        }
-        for (uint32_t i = 0; i < c.C.ncells; i++)
-            fprintf(stderr, "O cell %u: box [%lld %lld]x[%lld %lld]\n", i, (long long)c.C.cell_box[4 * i],
-                    (long long)c.C.cell_box[4 * i + 2], (long long)c.C.cell_box[4 * i + 1], (long long)c.C.cell_box[4 * i + 3]);
-        free(cell), free(q);
-    }
     if (sq_tsurf_split_blocking(&c.S, 0) < 0 || sec_reserve(&c)) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
     double t3 = now_s();
-    if (getenv("SQ_DEBUG")) fprintf(stderr, "after chords: nv %u\n", c.S.nv);
     progress(&c, "tutte", 0.7);
     v_uv = malloc((size_t)c.S.nv * sizeof *v_uv);
     if (!v_uv) {

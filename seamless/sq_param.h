@@ -43,6 +43,9 @@ typedef struct sq_param_options {
      * run done (0..1). Called a handful of times per stage. */
     void (*progress)(void *ctx, const char *stage, double fraction);
     void *progress_ctx;
+    /* Diagnostics only: return the map even when some UV triangles are not
+     * positively oriented (sq_param_verify then rejects it). Default 0. */
+    int allow_flips;
 } sq_param_options;
 
 void sq_param_options_default(sq_param_options *opt);

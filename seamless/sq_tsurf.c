@@ -269,16 +269,13 @@ static void heap_pop(heap *H, uint32_t *v, double *d)
     H->v[i] = lv, H->d[i] = ld;
 }
 
-/* 1 if v has a neighbour on the cut */
-static int near_cut(const sq_tsurf *S, uint32_t v)
+static double cdist(const double a[3], const double b[3])
 {
-    uint32_t h0 = S->v_he[v], h = h0;
-    do {
-        if (S->v_ncut[sq_ts_head(S, h)]) return 1;
-        h = sq_ts_ccw(S, h);
-    } while (h != h0);
-    return 0;
+    double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+    return sqrt(x * x + y * y + z * z);
 }
+
+static int blocked(const sq_tsurf *S, uint32_t w) { return S->v_ncut[w] || is_cone(S, w); }
 
 static double edge_len(const sq_tsurf *S, uint32_t a, uint32_t b)
 {
@@ -287,130 +284,305 @@ static double edge_len(const sq_tsurf *S, uint32_t a, uint32_t b)
     return sqrt(x * x + y * y + z * z);
 }
 
-sq_status sq_tsurf_route(const sq_tsurf *S, uint32_t start, sq_route_target kind,
-                         int32_t target_valence, const uint8_t *cone_free, double target_length,
-                         uint32_t target_sector, uint32_t **path, uint32_t *npath, sq_error *err)
+/* Route graph: nodes 0 .. nv-1 are vertices off the cut that are not
+ * cones; node nv + h (h a halfedge of an uncut edge whose two ends are
+ * blocked) is that edge's midpoint, a Steiner vertex made only if the route
+ * uses it, reached from face(twin h) and continuing into face(h). Every
+ * step stays in one face: a vertex and the edge opposite it, or two edges
+ * of a face whose third vertex is blocked. Edges with an end at the start
+ * are never crossed, and an edge with an end at the target ends the route:
+ * splitting such an edge would cut a face that a later step relies on. */
+static uint32_t edge_node(const sq_tsurf *S, uint32_t h) { return S->nv + h; }
+
+static int crossable(const sq_tsurf *S, uint32_t h)
 {
-    assert(S->kind[start]);
-    uint32_t nv = S->nv;
-    double *dist = malloc((size_t)nv * sizeof *dist);
-    uint32_t *pred = malloc((size_t)nv * sizeof *pred); /* halfedge arriving */
-    uint32_t *fin = calloc(nv, sizeof *fin);             /* target: final halfedge + 1 */
-    heap H = {0};
-    sq_status st = SQ_OK;
-    if (!dist || !pred || !fin) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
-        goto done;
+    return !S->kind[h] && blocked(S, S->vert[h]) && blocked(S, sq_ts_head(S, h));
+}
+
+static void node_pos(const sq_tsurf *S, uint32_t n, double p[3])
+{
+    if (n < S->nv) {
+        for (int k = 0; k < 3; k++) p[k] = S->pos[3 * n + k];
+        return;
     }
-    for (uint32_t v = 0; v < nv; v++) dist[v] = INFINITY, pred[v] = SQ_NONE;
-    uint32_t src = S->vert[start];
-    /* sector target: vertices from which an edge strictly inside the sector
-     * leads into its origin */
-    if (kind == SQ_ROUTE_SECTOR) {
-        for (uint32_t g = sq_ts_ccw(S, target_sector); !S->kind[g]; g = sq_ts_ccw(S, g))
-            fin[sq_ts_head(S, g)] = S->twin[g] + 1;
+    uint32_t h = n - S->nv, a = S->vert[h], b = sq_ts_head(S, h);
+    for (int k = 0; k < 3; k++) p[k] = 0.5 * (S->pos[3 * a + k] + S->pos[3 * b + k]);
+}
+
+typedef struct route_ctx {
+    sq_tsurf *S;
+    double *dist;
+    uint32_t *pred;
+    heap H;
+    uint8_t *ring; /* hops to the cut, capped (NULL: none) */
+} route_ctx;
+
+/* cost factor of entering a vertex k rings away from the cut: paths keep
+ * their distance from earlier cuts, so that no region becomes a thin strip
+ * or a bay that the interior map would have to squeeze */
+static double ring_factor(uint8_t k)
+{
+    static const double f[] = {2, 2, 1, 1, 1, 1};
+    return k < 6 ? f[k] : 1;
+}
+
+#define RING_CAP 6
+static uint8_t *rings(const sq_tsurf *S)
+{
+    uint8_t *r = malloc(S->nv);
+    uint32_t *q = malloc((size_t)S->nv * sizeof *q);
+    if (!r || !q) {
+        free(r), free(q);
+        return NULL;
     }
-    uint32_t end = SQ_NONE, end_he = SQ_NONE;
-    double best_far = -1;
-    uint32_t far = SQ_NONE;
-    /* first steps: edges strictly inside sector(start) */
-    for (uint32_t g = sq_ts_ccw(S, start); !S->kind[g]; g = sq_ts_ccw(S, g)) {
-        uint32_t w = sq_ts_head(S, g);
-        double d = edge_len(S, src, w);
-        if (kind == SQ_ROUTE_CONE && !S->v_ncut[w] && S->valence[w] == target_valence &&
-            cone_free[w]) {
-            if (end == SQ_NONE || d < dist[end]) {
-                if (end != SQ_NONE) dist[end] = INFINITY;
-                end = w, end_he = g, dist[w] = d;
-            }
-            continue;
-        }
-        if (S->v_ncut[w] || is_cone(S, w)) continue;
-        if (d < dist[w]) {
-            dist[w] = d, pred[w] = g;
-            if (heap_push(&H, w, d)) {
-                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
-                goto done;
-            }
-        }
+    uint32_t nq = 0;
+    for (uint32_t v = 0; v < S->nv; v++) {
+        r[v] = RING_CAP;
+        if (S->v_ncut[v]) r[v] = 0, q[nq++] = v;
     }
-    double end_d = end != SQ_NONE ? dist[end] : INFINITY;
-    while (H.n) {
-        uint32_t v;
-        double d;
-        heap_pop(&H, &v, &d);
-        if (d > dist[v]) continue;
-        if (d >= end_d) break;
-        if (kind == SQ_ROUTE_FREE) {
-            if (d > best_far) best_far = d, far = v;
-            if (d >= target_length) {
-                end = v, end_he = SQ_NONE;
-                break;
-            }
-        }
-        if (kind == SQ_ROUTE_SECTOR && fin[v]) {
-            /* the path ends here: v -> origin of the sector */
-            end = S->vert[target_sector], end_he = fin[v] - 1;
-            break;
-        }
+    for (uint32_t i = 0; i < nq; i++) {
+        uint32_t v = q[i];
+        if (r[v] + 1 >= RING_CAP) continue;
         uint32_t h0 = S->v_he[v], h = h0;
         do {
             uint32_t w = sq_ts_head(S, h);
-            double e = d + edge_len(S, v, w);
-            if (kind == SQ_ROUTE_CONE && !S->v_ncut[w] && S->valence[w] == target_valence &&
-                cone_free[w]) {
-                if (e < end_d) end = w, end_he = h, end_d = e;
-            } else if (!S->v_ncut[w] && !is_cone(S, w) && (e += (near_cut(S, w) ? e - d : 0), e < dist[w])) {
-                dist[w] = e, pred[w] = h;
-                if (heap_push(&H, w, e)) {
-                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
-                    goto done;
-                }
-            }
+            if (r[w] > r[v] + 1) r[w] = (uint8_t)(r[v] + 1), q[nq++] = w;
             h = sq_ts_ccw(S, h);
         } while (h != h0);
     }
-    if (kind == SQ_ROUTE_FREE && end == SQ_NONE && far != SQ_NONE) end = far, end_he = SQ_NONE;
-    if (end == SQ_NONE) {
-        uint32_t nstart = 0, nfin = 0;
-        for (uint32_t g = sq_ts_ccw(S, start); !S->kind[g]; g = sq_ts_ccw(S, g)) {
-            uint32_t w = sq_ts_head(S, g);
-            if (!S->v_ncut[w] && !is_cone(S, w)) nstart++;
-        }
-        if (kind == SQ_ROUTE_SECTOR)
-            for (uint32_t g = sq_ts_ccw(S, target_sector); !S->kind[g]; g = sq_ts_ccw(S, g)) {
-                uint32_t w = sq_ts_head(S, g);
-                if (!S->v_ncut[w] && !is_cone(S, w)) nfin++;
-            }
-        st = sq_error_set(err, SQ_ERR_INTERNAL,
-                          "no path from vertex %u inside its sector to the %s target (%u free first "
-                          "steps, %u free last steps)",
-                          src, kind == SQ_ROUTE_CONE ? "cone" : kind == SQ_ROUTE_FREE ? "free" : "sector",
-                          nstart, nfin);
-        goto done;
+    free(q);
+    return r;
+}
+
+static int relax(route_ctx *R, uint32_t from, uint32_t to, double d_from)
+{
+    double a[3], b[3];
+    node_pos(R->S, from, a);
+    node_pos(R->S, to, b);
+    double e = cdist(a, b);
+    if (to >= R->S->nv) e *= ring_factor(1);
+    else if (R->ring) e *= ring_factor(R->ring[to]);
+    e += d_from;
+    if (e < R->dist[to]) {
+        R->dist[to] = e;
+        R->pred[to] = from;
+        return heap_push(&R->H, to, e);
     }
-    /* collect backwards */
-    uint32_t cnt = 0;
-    uint32_t v = end_he != SQ_NONE ? S->vert[end_he] : end;
-    if (end_he != SQ_NONE) cnt++;
-    for (uint32_t u = v; u != src; u = S->vert[pred[u]]) cnt++;
-    uint32_t *p = realloc(*path, ((size_t)*npath + cnt) * sizeof *p);
-    if (!p) {
+    return 0;
+}
+
+static int is_target_cone(const sq_tsurf *S, uint32_t v, int32_t valence, const uint8_t *cone_free)
+{
+    return !S->v_ncut[v] && S->valence[v] == valence && cone_free && cone_free[v];
+}
+
+/* An edge a route may cross in its middle: uncut, both ends blocked, no end
+ * at the start; an end at the sector target only through the terminal
+ * nodes (fin), never on the way */
+static int may_cross(const sq_tsurf *S, uint32_t h, uint32_t src, uint32_t tgt, sq_route_target kind,
+                     const uint8_t *fin)
+{
+    if (!crossable(S, h)) return 0;
+    uint32_t a = S->vert[h], b = sq_ts_head(S, h);
+    /* spokes inside the start sector: the first step's face must survive */
+    if ((a == src || b == src) && fin[S->nv + h] == 2) return 0;
+    /* a spoke of the sector target only as the last step */
+    if (kind == SQ_ROUTE_SECTOR && (a == tgt || b == tgt)) return fin[S->nv + S->twin[h]] == 1;
+    return 1;
+}
+
+sq_status sq_tsurf_route(sq_tsurf *S, uint32_t start, sq_route_target kind, int32_t target_valence,
+                         const uint8_t *cone_free, double target_length, uint32_t target_sector,
+                         uint32_t **path, uint32_t *npath, sq_error *err)
+{
+    assert(S->kind[start]);
+    uint32_t nn = S->nv + S->nh;
+    route_ctx R = {S, malloc((size_t)nn * sizeof(double)), malloc((size_t)nn * sizeof(uint32_t)), {0}, rings(S)};
+    uint8_t *fin = calloc(nn, 1);
+    uint32_t *seq = NULL;
+    sq_status st = SQ_OK;
+    if (!R.dist || !R.pred || !fin) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
         goto done;
     }
+    for (uint32_t i = 0; i < nn; i++) R.dist[i] = INFINITY, R.pred[i] = SQ_NONE;
+    uint32_t src = S->vert[start];
+    const uint32_t SRC = UINT32_MAX - 1;
+    uint32_t tgt = SQ_NONE; /* target vertex (cone or sector origin) */
+#define PUSH_FAIL                                                                   \
+    do {                                                                            \
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");             \
+        goto done;                                                                  \
+    } while (0)
+    /* nodes from which the target can be entered */
+    if (kind == SQ_ROUTE_SECTOR) {
+        tgt = S->vert[target_sector];
+        uint32_t g = target_sector;
+        do {
+            /* the edge opposite the origin in face(g), entered from the
+             * other side (continuing into face(g)) */
+            uint32_t o = S->next[g];
+            if (crossable(S, o)) fin[edge_node(S, o)] = 1;
+            g = sq_ts_ccw(S, g);
+            if (S->kind[g]) break;
+            uint32_t w = sq_ts_head(S, g);
+            if (!blocked(S, w)) fin[w] = 1;
+            /* a spoke strictly inside the sector, from either side */
+            if (crossable(S, g)) fin[edge_node(S, g)] = fin[edge_node(S, S->twin[g])] = 1;
+        } while (1);
+    }
+    /* spokes strictly inside sector(start): never crossed (fin = 2) */
+    for (uint32_t g = sq_ts_ccw(S, start); !S->kind[g] && g != start; g = sq_ts_ccw(S, g))
+        if (!fin[S->nv + g]) fin[S->nv + g] = fin[S->nv + S->twin[g]] = 2;
+    /* first steps inside sector(start) */
+    {
+        uint32_t g = start;
+        for (;;) {
+            uint32_t o = S->next[g];
+            if (may_cross(S, o, src, tgt, kind, fin)) {
+                uint32_t n = edge_node(S, S->twin[o]);
+                double a[3], b[3];
+                node_pos(S, n, a);
+                node_pos(S, src, b);
+                double e = 2 * cdist(a, b);
+                if (e < R.dist[n]) {
+                    R.dist[n] = e, R.pred[n] = SRC;
+                    if (heap_push(&R.H, n, e)) PUSH_FAIL;
+                }
+            }
+            g = sq_ts_ccw(S, g);
+            if (S->kind[g]) break;
+            uint32_t w = sq_ts_head(S, g);
+            if (crossable(S, g)) {
+                /* the first step may split a spoke of the start: its
+                 * midpoint continues into either face of the spoke */
+                double a[3], b[3];
+                node_pos(S, edge_node(S, g), a);
+                node_pos(S, src, b);
+                double e = 2 * cdist(a, b);
+                uint32_t ns[2] = {edge_node(S, g), edge_node(S, S->twin[g])};
+                for (int i = 0; i < 2; i++)
+                    if (e < R.dist[ns[i]]) {
+                        R.dist[ns[i]] = e, R.pred[ns[i]] = SRC;
+                        if (heap_push(&R.H, ns[i], e)) PUSH_FAIL;
+                    }
+            }
+            if (kind == SQ_ROUTE_SECTOR && w == tgt) continue;
+            if (!blocked(S, w)) {
+                double e = edge_len(S, src, w) * (R.ring ? ring_factor(R.ring[w]) : 1);
+                if (e < R.dist[w]) {
+                    R.dist[w] = e, R.pred[w] = SRC;
+                    if (heap_push(&R.H, w, e)) PUSH_FAIL;
+                }
+            }
+        }
+    }
+    uint32_t endn = SQ_NONE;
+    double best_far = -1;
+    uint32_t far = SQ_NONE;
+    while (R.H.n) {
+        uint32_t n;
+        double d;
+        heap_pop(&R.H, &n, &d);
+        if (d > R.dist[n]) continue;
+        if (kind == SQ_ROUTE_SECTOR && fin[n] == 1) {
+            endn = n;
+            break;
+        }
+        if (kind == SQ_ROUTE_FREE && n < S->nv) {
+            if (d > best_far) best_far = d, far = n;
+            if (d >= target_length) {
+                endn = n;
+                break;
+            }
+        }
+        if (n < S->nv) {
+            uint32_t h0 = S->v_he[n], h = h0;
+            do {
+                uint32_t w = sq_ts_head(S, h);
+                if (kind == SQ_ROUTE_CONE && is_target_cone(S, w, target_valence, cone_free)) {
+                    endn = n, tgt = w;
+                    goto found;
+                }
+                if (!blocked(S, w) && relax(&R, n, w, d)) PUSH_FAIL;
+                uint32_t o = S->next[h]; /* opposite n in face(h) */
+                if (may_cross(S, o, src, tgt, kind, fin) && relax(&R, n, edge_node(S, S->twin[o]), d)) PUSH_FAIL;
+                h = sq_ts_ccw(S, h);
+            } while (h != h0);
+        } else {
+            uint32_t h = n - S->nv; /* continue into face(h) */
+            if (kind == SQ_ROUTE_CONE) {
+                uint32_t ends[3] = {S->vert[h], sq_ts_head(S, h), S->vert[sq_ts_prev(S, h)]};
+                for (int i = 0; i < 3; i++)
+                    if (is_target_cone(S, ends[i], target_valence, cone_free)) {
+                        endn = n, tgt = ends[i];
+                        goto found;
+                    }
+            }
+            uint32_t c = S->vert[sq_ts_prev(S, h)];
+            if (!blocked(S, c)) {
+                if (relax(&R, n, c, d)) PUSH_FAIL;
+            } else {
+                uint32_t o1 = S->next[h], o2 = sq_ts_prev(S, h);
+                if (may_cross(S, o1, src, tgt, kind, fin) && relax(&R, n, edge_node(S, S->twin[o1]), d)) PUSH_FAIL;
+                if (may_cross(S, o2, src, tgt, kind, fin) && relax(&R, n, edge_node(S, S->twin[o2]), d)) PUSH_FAIL;
+            }
+        }
+    }
+    if (kind == SQ_ROUTE_FREE && endn == SQ_NONE && far != SQ_NONE) endn = far;
+found:
+    if (endn == SQ_NONE) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "no path from vertex %u inside its sector to the %s target",
+                          src, kind == SQ_ROUTE_CONE ? "cone" : kind == SQ_ROUTE_FREE ? "free" : "sector");
+        goto done;
+    }
+    /* node sequence from the start */
+    uint32_t cnt = 0;
+    for (uint32_t n = endn; n != SRC; n = R.pred[n]) cnt++;
+    seq = malloc(((size_t)cnt + 2) * sizeof *seq);
+    if (!seq) PUSH_FAIL;
+    {
+        uint32_t i = cnt;
+        for (uint32_t n = endn; n != SRC; n = R.pred[n]) seq[--i] = n;
+    }
+    uint32_t nv0 = S->nv; /* node ids refer to this numbering */
+    uint32_t *p = realloc(*path, ((size_t)*npath + cnt + 1) * sizeof *p);
+    if (!p) PUSH_FAIL;
     *path = p;
-    uint32_t i = *npath + cnt;
-    if (end_he != SQ_NONE) p[--i] = end_he;
-    for (uint32_t u = v; u != src; u = S->vert[pred[u]]) p[--i] = pred[u];
-    assert(i == *npath);
-    *npath += cnt;
+    uint32_t prev = src, k = 0;
+    for (uint32_t i = 0; i <= cnt; i++) {
+        uint32_t v;
+        if (i == cnt) {
+            if (kind == SQ_ROUTE_FREE) break;
+            v = tgt;
+        } else if (seq[i] < nv0) {
+            v = seq[i];
+        } else {
+            v = sq_tsurf_split_edge(S, seq[i] - nv0, 0.5);
+            if (v == SQ_NONE) PUSH_FAIL;
+        }
+        uint32_t h0 = S->v_he[prev], h = h0, f = SQ_NONE;
+        do {
+            if (sq_ts_head(S, h) == v) f = h;
+            h = sq_ts_ccw(S, h);
+        } while (h != h0 && f == SQ_NONE);
+        if (f == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "route: vertices %u and %u are not adjacent", prev, v);
+            goto done;
+        }
+        p[*npath + k++] = f;
+        prev = v;
+    }
+    *npath += k;
+#undef PUSH_FAIL
 done:
-    free(dist);
-    free(pred);
+    free(R.dist);
+    free(R.pred);
+    free(R.H.v);
+    free(R.H.d);
+    free(R.ring);
     free(fin);
-    free(H.v);
-    free(H.d);
+    free(seq);
     return st;
 }
 
@@ -424,11 +596,6 @@ static void centroid(const sq_tsurf *S, uint32_t f, double c[3])
         for (int k = 0; k < 3; k++) c[k] += S->pos[3 * S->vert[h] + k] / 3;
 }
 
-static double cdist(const double a[3], const double b[3])
-{
-    double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-    return sqrt(x * x + y * y + z * z);
-}
 
 sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind,
                                int32_t target_valence, const uint8_t *cone_free,
@@ -586,7 +753,6 @@ done:
     return st;
 }
 
-static int blocked(const sq_tsurf *S, uint32_t w) { return S->v_ncut[w] || is_cone(S, w); }
 
 int64_t sq_tsurf_open_sector(sq_tsurf *S, uint32_t h)
 {

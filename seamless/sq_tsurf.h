@@ -116,10 +116,12 @@ typedef enum sq_route_target {
 /* Shortest path (Euclidean edge lengths) leaving the origin of the cut
  * halfedge `start` through an edge strictly inside sector(start), running
  * through vertices off the cut that are not cones, ending at a target.
- * The path's halfedges (start to end) are appended to *path (realloc'd;
- * *npath updated). SQ_ERR_INTERNAL if no path exists (call
- * sq_tsurf_split_blocking first). */
-sq_status sq_tsurf_route(const sq_tsurf *S, uint32_t start, sq_route_target kind,
+ * Where edges between blocked vertices (on the cut or cones) wall regions
+ * off, the path may cross such an edge at its midpoint, which then becomes
+ * a Steiner vertex (split), so a path exists whenever the target lies in
+ * the start's region. The path's halfedges (start to end) are appended to
+ * *path (realloc'd; *npath updated). */
+sq_status sq_tsurf_route(sq_tsurf *S, uint32_t start, sq_route_target kind,
                          int32_t target_valence, const uint8_t *cone_free, double target_length,
                          uint32_t target_sector, uint32_t **path, uint32_t *npath, sq_error *err);
 
