@@ -1048,6 +1048,52 @@ done:
 
 /* ---- output ---------------------------------------------------------- */
 
+/* Distortion of the map (stats): per triangle the singular values s1 >= s2
+ * of the linear map from the 3D triangle to its UV triangle; symmetric
+ * Dirichlet s1^2 + s2^2 + s1^-2 + s2^-2 after the global scale that
+ * minimizes its area-weighted sum, and the conformal ratio s1 / s2. */
+static void distortion(const sq_param *P, sq_param_stats *stats)
+{
+    double A = 0, B = 0, W = 0, cmean = 0, cmax = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        double a2 = pass ? sqrt(B / A) : 1, dmean = 0, dmax = 0;
+        for (uint32_t f = 0; f < P->nf; f++) {
+            const double *p0 = P->pos + 3 * P->tri[3 * f], *p1 = P->pos + 3 * P->tri[3 * f + 1],
+                         *p2 = P->pos + 3 * P->tri[3 * f + 2];
+            double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+            double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+            double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+            double x2 = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1;
+            double cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            double y2 = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]) / l1;
+            double area = 0.5 * l1 * y2;
+            if (!(area > 0)) continue;
+            const double *u0 = P->uv + 2 * P->tri_uv[3 * f], *u1 = P->uv + 2 * P->tri_uv[3 * f + 1],
+                         *u2 = P->uv + 2 * P->tri_uv[3 * f + 2];
+            /* J = [u1-u0, u2-u0] * inv([[l1, x2], [0, y2]]) */
+            double a = u1[0] - u0[0], b = u2[0] - u0[0], cc = u1[1] - u0[1], d = u2[1] - u0[1];
+            double j11 = a / l1, j12 = (b - a * x2 / l1) / y2, j21 = cc / l1, j22 = (d - cc * x2 / l1) / y2;
+            double fro = j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22, det = j11 * j22 - j12 * j21;
+            double disc = sqrt(fmax(fro * fro - 4 * det * det, 0));
+            double s1 = sqrt(0.5 * (fro + disc)), s2 = fabs(det) / s1; /* no cancellation */
+            if (!(s2 > 0)) continue;
+            if (!pass) {
+                A += area * (s1 * s1 + s2 * s2), B += area * (1 / (s1 * s1) + 1 / (s2 * s2)), W += area;
+                double cf = s1 / s2;
+                cmean += area * cf;
+                if (cf > cmax) cmax = cf;
+            } else {
+                double sd = a2 * (s1 * s1 + s2 * s2) + (1 / (s1 * s1) + 1 / (s2 * s2)) / a2;
+                dmean += area * sd;
+                if (sd > dmax) dmax = sd;
+            }
+        }
+        if (pass && W > 0) stats->sym_dirichlet_mean = dmean / W, stats->sym_dirichlet_max = dmax;
+        if (!(A > 0 && B > 0)) break;
+    }
+    if (W > 0) stats->conformal_mean = cmean / W, stats->conformal_max = cmax;
+}
+
 static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, sq_param *P,
                           sq_param_stats *stats)
 {
@@ -1137,6 +1183,7 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
         stats->nuv = nu;
         stats->seam_edges = seams;
     }
+    if (stats && !bad) distortion(P, stats);
     if (bad && !c->keep_flips)
         return sq_error_set(c->err, SQ_ERR_SOLVER,
                             "the interior map is not injective in floating point: %u of %u UV "
