@@ -2,6 +2,8 @@
 
 #include <time.h>
 
+#include "sq_cones.h"
+
 void sq_json_string(FILE *f, const char *s)
 {
     fputc('"', f);
@@ -46,4 +48,17 @@ int sq_exit_code(sq_status st)
     case SQ_ERR_ARGUMENT: return SQ_EXIT_USAGE;
     default: return SQ_EXIT_INVALID_INPUT;
     }
+}
+
+sq_status sq_cli_read_cones(const char *path, const sq_mesh *mesh, int32_t *val, sq_error *err)
+{
+    sq_status st = sq_cones_read(path, mesh->nv, val, NULL, err);
+    if (st) return st;
+    st = sq_cones_check_realizable(mesh->nv, val, sq_mesh_genus(mesh), err);
+    if (st) {
+        char msg[SQ_ERROR_MSG_MAX];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        sq_error_set(err, st, "%s: %s", path, msg);
+    }
+    return st;
 }

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "sq_error.h"
+#include "sq_mesh.h"
 
 #define SQ_VERSION_STRING "0.1.0"
 
@@ -33,6 +34,11 @@ void sq_json_error(sq_status code, const char *stage, const char *message);
 void sq_json_string(FILE *f, const char *s);
 
 /* Monotonic time in seconds. */
+/* Reads a cone file for mesh (nv valences into val) and checks that the
+ * cones are realizable on its genus; a failure message starts with the
+ * cone file's path (the library's messages know vertices, not files). */
+sq_status sq_cli_read_cones(const char *path, const sq_mesh *mesh, int32_t *val, sq_error *err);
+
 double sq_now(void);
 
 /* Exit code for a library status. */

@@ -269,16 +269,10 @@ int sq_cmd_domain(int argc, char **argv)
         val = malloc((size_t)mesh.nv * sizeof *val);
         if (!val) {
             sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
-        } else if (sq_cones_read(cones_path, mesh.nv, val, NULL, &err) == SQ_OK) {
-            if (sq_cones_check_realizable(mesh.nv, val, genus, &err) == SQ_OK) {
-                nval = 0;
-                for (uint32_t v = 0; v < mesh.nv; v++)
-                    if (val[v] != 4) val[nval++] = val[v];
-            } else { /* the library message knows vertices, not the file */
-                char msg[SQ_ERROR_MSG_MAX];
-                snprintf(msg, sizeof msg, "%s", err.msg);
-                sq_error_set(&err, err.code, "%s: %s", cones_path, msg);
-            }
+        } else if (sq_cli_read_cones(cones_path, &mesh, val, &err) == SQ_OK) {
+            nval = 0;
+            for (uint32_t v = 0; v < mesh.nv; v++)
+                if (val[v] != 4) val[nval++] = val[v];
         }
         sq_mesh_free(&mesh);
         sq_soup_free(&soup);

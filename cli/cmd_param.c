@@ -335,15 +335,8 @@ int sq_cmd_param(int argc, char **argv)
         sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
         goto fail;
     }
-    if (sq_cones_read(cones_path, mesh.nv, val, NULL, &err)) goto fail;
+    if (sq_cli_read_cones(cones_path, &mesh, val, &err)) goto fail;
     sq_cones_histogram(mesh.nv, val, hist, MAX_VALENCE_HIST);
-    if (sq_cones_check_realizable(mesh.nv, val, sq_mesh_genus(&mesh), &err)) {
-        /* the library message knows vertices, not the file */
-        char msg[SQ_ERROR_MSG_MAX];
-        snprintf(msg, sizeof msg, "%s", err.msg);
-        sq_error_set(&err, err.code, "%s: %s", cones_path, msg);
-        goto fail;
-    }
     stage = "output";
     for (int i = 0; i < NOUT; i++)
         if (out[i].path && probe_output(out[i].path, &err)) goto fail;

@@ -66,4 +66,9 @@ static inline uint64_t sq_cut_splitmix(uint64_t *s)
     return z ^ (z >> 31);
 }
 
+/* An edge joining two cones (a, b; SQ_NONE if none), preferably in the ring
+ * around `near` (SQ_NONE: anywhere); for messages (sq_cut_util.c). */
+void sq_cut_find_cone_edge(const sq_mesh *m, const uint8_t *cone, uint32_t near, uint32_t *a,
+                           uint32_t *b);
+
 #endif

@@ -54,35 +54,6 @@ static int by_len(const void *a, const void *b)
     return x->off < y->off ? -1 : (x->off > y->off);
 }
 
-/* An edge joining two cones (for the message when cones block loops). */
-static void find_cone_edge(const sq_mesh *m, const uint8_t *cone, uint32_t near, uint32_t *a,
-                           uint32_t *b)
-{
-    *a = *b = SQ_NONE;
-    if (near != SQ_NONE) { /* a cone-cone edge in the ring around `near` */
-        const uint32_t h0 = m->v_he[near];
-        uint32_t h = h0;
-        do {
-            const uint32_t n = m->he_next[h];
-            const uint32_t p = m->he_vert[n], q = sq_cut_dest(m, n);
-            if (cone[p] && cone[q]) {
-                *a = p;
-                *b = q;
-                return;
-            }
-            h = sq_cut_rot(m, h);
-        } while (h != h0);
-    }
-    for (uint32_t h = 0; h < m->nh; ++h) {
-        const uint32_t p = m->he_vert[h], q = sq_cut_dest(m, h);
-        if (p < q && cone[p] && cone[q]) {
-            *a = p;
-            *b = q;
-            return;
-        }
-    }
-}
-
 sq_status sq_cut_loops_find(const sq_mesh *m, const uint8_t *cone, const sq_cut_options *opt_in,
                             sq_cut_loops *out, sq_cut_stats *stats, sq_error *err)
 {
@@ -152,7 +123,7 @@ sq_status sq_cut_loops_find(const sq_mesh *m, const uint8_t *cone, const sq_cut_
                  * adjacent cones is not a disk. Both need edge splits. */
                 if (unreached != SQ_NONE || left != 2 * g) {
                     uint32_t a, c;
-                    find_cone_edge(m, cone ? cone : blocked, unreached, &a, &c);
+                    sq_cut_find_cone_edge(m, cone ? cone : blocked, unreached, &a, &c);
                     stats_fail(stats, SQ_CUT_FAIL_NEEDS_SPLIT, a, c);
                     if (unreached != SQ_NONE)
                         st = sq_error_set(err, SQ_ERR_ARGUMENT,

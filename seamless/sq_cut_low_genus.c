@@ -37,37 +37,6 @@ static void stats_fail(sq_cut_stats *s, sq_cut_failure f, uint32_t a, uint32_t b
     }
 }
 
-/* A cone-cone edge, preferably in the ring around `near` (for messages). */
-static void cone_edge(const sq_mesh *m, const uint8_t *cone, uint32_t near, uint32_t *a,
-                      uint32_t *b)
-{
-    *a = *b = SQ_NONE;
-    if (!cone)
-        return;
-    if (near != SQ_NONE) {
-        const uint32_t h0 = m->v_he[near];
-        uint32_t h = h0;
-        do {
-            const uint32_t n = m->he_next[h];
-            const uint32_t p = m->he_vert[n], q = sq_cut_dest(m, n);
-            if (cone[p] && cone[q]) {
-                *a = p;
-                *b = q;
-                return;
-            }
-            h = sq_cut_rot(m, h);
-        } while (h != h0);
-    }
-    for (uint32_t h = 0; h < m->nh; ++h) {
-        const uint32_t p = m->he_vert[h], q = sq_cut_dest(m, h);
-        if (p < q && cone[p] && cone[q]) {
-            *a = p;
-            *b = q;
-            return;
-        }
-    }
-}
-
 static int is_cone(const uint8_t *cone, uint32_t v) { return cone && cone[v]; }
 
 /* Boundary word, length and the checks; genus already set in G. */
@@ -168,7 +137,7 @@ static sq_status build_genus0(const sq_mesh *m, const uint8_t *cone, sq_cut_grap
     }
     if (w == SQ_NONE) {
         uint32_t a, b;
-        cone_edge(m, cone, walled, &a, &b);
+        sq_cut_find_cone_edge(m, cone, walled, &a, &b);
         stats_fail(stats, SQ_CUT_FAIL_NEEDS_SPLIT, a, b);
         st = sq_error_set(err, SQ_ERR_ARGUMENT,
                           "cut graph: no path of 2 edges avoids the cones (non-cone vertex %u "
@@ -375,7 +344,7 @@ static sq_status build_theta(const sq_mesh *m, const uint8_t *cone, const sq_cut
     }
     if (r == 0) {
         uint32_t p, q;
-        cone_edge(m, cone, SQ_NONE, &p, &q);
+        sq_cut_find_cone_edge(m, cone, SQ_NONE, &p, &q);
         stats_fail(stats, SQ_CUT_FAIL_NEEDS_SPLIT, p, q);
         st = sq_error_set(err, SQ_ERR_ARGUMENT,
                           "cut graph: no cone-free path crosses the loop of the torus from "

@@ -137,3 +137,34 @@ uint32_t sq_cut_boundary_loops(const sq_mesh *m, const uint8_t *cut, uint8_t *sc
     }
     return loops;
 }
+
+/* An edge joining two cones, preferably in the ring around `near` (for the
+ * message when cones block a loop or path). */
+void sq_cut_find_cone_edge(const sq_mesh *m, const uint8_t *cone, uint32_t near, uint32_t *a, uint32_t *b)
+{
+    *a = *b = SQ_NONE;
+    if (!cone)
+        return;
+    if (near != SQ_NONE) { /* a cone-cone edge in the ring around `near` */
+        const uint32_t h0 = m->v_he[near];
+        uint32_t h = h0;
+        do {
+            const uint32_t n = m->he_next[h];
+            const uint32_t p = m->he_vert[n], q = sq_cut_dest(m, n);
+            if (cone[p] && cone[q]) {
+                *a = p;
+                *b = q;
+                return;
+            }
+            h = sq_cut_rot(m, h);
+        } while (h != h0);
+    }
+    for (uint32_t h = 0; h < m->nh; ++h) {
+        const uint32_t p = m->he_vert[h], q = sq_cut_dest(m, h);
+        if (p < q && cone[p] && cone[q]) {
+            *a = p;
+            *b = q;
+            return;
+        }
+    }
+}

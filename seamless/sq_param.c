@@ -122,13 +122,6 @@ static sq_status budget_error(ctx *c, const char *stage)
 
 static double snap(const ctx *c, double x) { return ldexp(nearbyint(ldexp(x, c->dyadic)), -c->dyadic); }
 
-static double dist3(const sq_tsurf *S, uint32_t a, uint32_t b)
-{
-    double x = S->pos[3 * a] - S->pos[3 * b], y = S->pos[3 * a + 1] - S->pos[3 * b + 1],
-           z = S->pos[3 * a + 2] - S->pos[3 * b + 2];
-    return sqrt(x * x + y * y + z * z);
-}
-
 /* y = R^rot x + t (R: +90 degrees), exact for dyadic x */
 static void transition(const sq_omega *O, uint32_t l, const double x[2], double y[2])
 {
@@ -142,35 +135,6 @@ static void transition(const sq_omega *O, uint32_t l, const double x[2], double 
 }
 
 /* ---- step 1-3: cut graph, domain, Omega ------------------------------ */
-
-static sq_status reverse_pattern(const sq_pattern *in, sq_pattern *out, sq_error *err)
-{
-    uint32_t k = in->k;
-    sq_status st = sq_pattern_alloc(out, k, err);
-    if (st) return st;
-    for (uint32_t j = 0; j < k; j++) {
-        out->partner[j] = k - 1 - in->partner[k - 1 - j];
-        out->straight[j] = in->straight ? in->straight[(k - j) % k] : 0;
-    }
-    return SQ_OK;
-}
-
-/* Q side i = clockwise surface side (i + r) % k with the same partners. */
-static int find_offset(const sq_pattern *cw, const sq_pattern *q, uint32_t *r)
-{
-    uint32_t k = q->k;
-    if (cw->k != k) return -1;
-    for (uint32_t o = 0; o < k; o++) {
-        uint32_t i = 0;
-        for (; i < k; i++)
-            if (cw->partner[(i + o) % k] != (q->partner[i] + o) % k) break;
-        if (i == k) {
-            *r = o;
-            return 0;
-        }
-    }
-    return -1;
-}
 
 static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st_out)
 {
@@ -199,7 +163,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     else
         st = sq_cut_graph_build_low_genus(m, cone, &copt, &c->G, &cst, err);
     if (st) goto done;
-    st = reverse_pattern(&c->G.pattern, &c->pcw, err);
+    st = sq_pattern_reversed(&c->G.pattern, &c->pcw, err);
     if (st) goto done;
     double t1 = now_s();
     progress(c, "domain", 0.1);
@@ -210,12 +174,8 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     st = sq_domain_build(genus, val, nc, &dopt, c->D, err);
     if (st) goto done;
     c->k = c->D->k;
-    if (find_offset(&c->pcw, &c->D->pattern, &c->r)) {
-        st = sq_error_set(err, SQ_ERR_INTERNAL,
-                          "the cut graph's side pattern (%u sides) does not match the domain's",
-                          c->pcw.k);
-        goto done;
-    }
+    st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, err);
+    if (st) goto done;
     double t2 = now_s();
     progress(c, "omega", 0.2);
     st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
@@ -241,6 +201,30 @@ done:
 }
 
 /* ---- step 4: the cut graph and the cone tree on the surface ----------- */
+
+/* Halfedges of a polyline run from start halfedge h to vertex end_v along
+ * the boundary (after splits). */
+static sq_status walk_run(ctx *c, uint32_t h, uint32_t end_v, uint32_t **out, uint32_t *n)
+{
+    uint32_t cap = 16, cnt = 0;
+    uint32_t *a = malloc(cap * sizeof *a);
+    if (!a) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    for (;;) {
+        if (cnt == cap) {
+            cap *= 2;
+            uint32_t *p = realloc(a, cap * sizeof *p);
+            if (!p) return free(a), sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            a = p;
+        }
+        a[cnt++] = h;
+        if (sq_ts_head(&c->S, h) == end_v) break;
+        if (cnt > c->S.nh) return free(a), sq_error_set(c->err, SQ_ERR_INTERNAL, "run walk does not end");
+        h = sq_tsurf_next_boundary(&c->S, h);
+    }
+    *out = a;
+    *n = cnt;
+    return SQ_OK;
+}
 
 /* Labels the surface cut graph's sides with Omega's labels (Q side i of the
  * clockwise reading; the root splits side root_side) and returns the root. */
@@ -282,20 +266,9 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
             return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     }
     /* walk the side again (splits change it) */
-    uint32_t *side = NULL, ns = 0, cap = 0;
-    uint32_t end_v = G->corner_vertex[(s_r + 1) % k];
-    uint32_t h = hmap[G->side_he[a]];
-    for (;;) {
-        if (ns == cap) {
-            cap = cap ? 2 * cap : 64;
-            uint32_t *p = realloc(side, cap * sizeof *p);
-            if (!p) return free(side), sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-            side = p;
-        }
-        side[ns++] = h;
-        if (sq_ts_head(S, h) == end_v) break;
-        h = sq_tsurf_next_boundary(S, h);
-    }
+    uint32_t *side = NULL, ns = 0;
+    sq_status st = walk_run(c, hmap[G->side_he[a]], G->corner_vertex[(s_r + 1) % k], &side, &ns);
+    if (st) return st;
     /* clockwise fraction root_pos / side_len from Q corner qs = counter-
      * clockwise fraction 1 - that from the side's start */
     double frac = 1.0 - (double)O->root_pos / (double)c->D->side_len[qs];
@@ -328,7 +301,7 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
     sq_status st = SQ_OK;
     uint32_t *ti_of = malloc((size_t)Q->nv * sizeof *ti_of);
     uint32_t *seg_of = malloc((size_t)Q->nh * sizeof *seg_of);
-    uint8_t *free_cone = malloc(S->cap_v);
+    uint8_t *free_cone = malloc(S->nv_input); /* cones are input vertices */
     node_item *stack = malloc(((size_t)T->nverts + 1) * sizeof *stack);
     uint32_t *path = NULL, npath = 0;
     if (!ti_of || !seg_of || !free_cone || !stack) {
@@ -339,7 +312,7 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
     for (uint32_t i = 0; i < T->nverts; i++) ti_of[T->vert[i]] = i;
     for (uint32_t h = 0; h < Q->nh; h++) seg_of[h] = SQ_NONE;
     for (uint32_t s = 0; s < T->nseg; s++) seg_of[T->seg_he[T->seg_off[s]]] = s;
-    for (uint32_t v = 0; v < S->nv; v++) free_cone[v] = S->valence[v] != 4;
+    for (uint32_t v = 0; v < S->nv_input; v++) free_cone[v] = S->valence[v] != 4;
     /* length scale: surface length per quad edge */
     double area = 0;
     for (uint32_t f = 0; f < S->nf; f++) {
@@ -373,13 +346,6 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
         uint32_t last = T->seg_he[T->seg_off[s + 1] - 1];
         uint32_t qend = Q->he_vert[Q->he_next[last]];
         uint32_t te = ti_of[qend];
-        uint8_t *fc = realloc(free_cone, S->cap_v);
-        if (!fc) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            goto done;
-        }
-        free_cone = fc;
-        for (uint32_t v = S->nv; v-- > 0 && v >= S->nv_input;) free_cone[v] = 0;
         /* first a path along existing edges through vertices off the cut;
          * where cones or cuts block it, a path through faces with Steiner
          * vertices on the crossed edges (seed 9.4, [SAPH04]) */
@@ -396,13 +362,6 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
                     st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                     goto done;
                 }
-        fc = realloc(free_cone, S->cap_v);
-        if (!fc || sec_reserve(c)) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            goto done;
-        }
-        free_cone = fc;
-        for (uint32_t v = S->nv; v-- > 0 && v >= S->nv_input;) free_cone[v] = 0;
         st = sq_tsurf_route(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
                             is_cone_node ? (int32_t)Q->v_nface[qend] : 4, free_cone, tlen, SQ_NONE,
                             &path, &npath, err);
@@ -412,15 +371,7 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
                                       is_cone_node ? (int32_t)Q->v_nface[qend] : 4, free_cone, tlen,
                                       SQ_NONE, &path, &npath, err);
         }
-        if (st == SQ_OK) {
-            fc = realloc(free_cone, S->cap_v);
-            if (!fc || sec_reserve(c)) {
-                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-                goto done;
-            }
-            free_cone = fc;
-            for (uint32_t v = S->nv; v-- > 0 && v >= S->nv_input;) free_cone[v] = 0;
-        }
+        if (st == SQ_OK && sec_reserve(c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         if (st) goto done;
         if (over_budget(c)) {
             st = budget_error(c, "cone tree");
@@ -429,7 +380,7 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
         uint32_t lab = c->k + 2 * s;
         for (uint32_t e = 0; e < npath; e++) sq_tsurf_cut_edge(S, path[e], SQ_TS_SEAM, lab, lab + 1);
         uint32_t vend = sq_ts_head(S, path[npath - 1]);
-        free_cone[vend] = 0;
+        if (vend < S->nv_input) free_cone[vend] = 0;
         it->sector = path[0];
         done_seg++;
         stack[nst++] = (node_item){te, S->twin[path[npath - 1]], 0};
@@ -474,7 +425,7 @@ static sq_status split_polyline(ctx *c, const uint32_t *he, uint32_t n, uint32_t
         return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     }
     cum[0] = 0;
-    for (uint32_t i = 0; i < n; i++) cum[i + 1] = cum[i] + dist3(S, S->vert[he[i]], sq_ts_head(S, he[i]));
+    for (uint32_t i = 0; i < n; i++) cum[i + 1] = cum[i] + sq_ts_dist(S, S->vert[he[i]], sq_ts_head(S, he[i]));
     double L = cum[n], unit = L / N;
     matched[0] = S->vert[he[0]];
     matched[N] = sq_ts_head(S, he[n - 1]);
@@ -499,7 +450,6 @@ static sq_status split_polyline(ctx *c, const uint32_t *he, uint32_t n, uint32_t
             used[i + 1] = 1, matched[j] = S->vert[he[i + 1]], tgt_edge[j] = SQ_NONE;
         }
     }
-    /* enforce order: a snapped vertex must lie after the previous match */
     sq_status st = SQ_OK;
     /* splits, last target first, so that each edge's first half keeps its
      * index and covers [cum[i], current end) */
@@ -531,30 +481,6 @@ out:
     return st;
 }
 
-/* Halfedges of a polyline run from start halfedge h to vertex end_v along
- * the boundary (after splits). */
-static sq_status walk_run(ctx *c, uint32_t h, uint32_t end_v, uint32_t **out, uint32_t *n)
-{
-    uint32_t cap = 16, cnt = 0;
-    uint32_t *a = malloc(cap * sizeof *a);
-    if (!a) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-    for (;;) {
-        if (cnt == cap) {
-            cap *= 2;
-            uint32_t *p = realloc(a, cap * sizeof *p);
-            if (!p) return free(a), sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-            a = p;
-        }
-        a[cnt++] = h;
-        if (sq_ts_head(&c->S, h) == end_v) break;
-        if (cnt > c->S.nh) return free(a), sq_error_set(c->err, SQ_ERR_INTERNAL, "run walk does not end");
-        h = sq_tsurf_next_boundary(&c->S, h);
-    }
-    *out = a;
-    *n = cnt;
-    return SQ_OK;
-}
-
 /* UVs of the polyline he[0..n) whose vertices matched[0..N] sit at the
  * grid points g[0..N] (integer); intermediate vertices by arc length,
  * snapped. uvv receives the UV index per polyline vertex (n + 1). */
@@ -570,10 +496,10 @@ static sq_status polyline_uv(ctx *c, const uint32_t *he, uint32_t n, const uint3
             if (uvv[i] == SQ_NONE) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
             if (j > 0 && i > i0 + 1) { /* fill i0+1 .. i-1 */
                 double tot = 0;
-                for (uint32_t q = i0; q < i; q++) tot += dist3(S, S->vert[he[q]], sq_ts_head(S, he[q]));
+                for (uint32_t q = i0; q < i; q++) tot += sq_ts_dist(S, S->vert[he[q]], sq_ts_head(S, he[q]));
                 double acc = 0;
                 for (uint32_t q = i0 + 1; q < i; q++) {
-                    acc += dist3(S, S->vert[he[q - 1]], sq_ts_head(S, he[q - 1]));
+                    acc += sq_ts_dist(S, S->vert[he[q - 1]], sq_ts_head(S, he[q - 1]));
                     double lam = acc / tot;
                     double x = (double)g[2 * (j - 1)] + lam * (double)(g[2 * j] - g[2 * (j - 1)]);
                     double y = (double)g[2 * (j - 1) + 1] + lam * (double)(g[2 * j + 1] - g[2 * (j - 1) + 1]);
@@ -987,7 +913,7 @@ static sq_status tutte(ctx *c, uint32_t *v_uv)
             /* faces on both sides of edge v-w: face(h) has third vertex
              * tri[prev(h)]; the twin's face has tri[prev(twin h)] */
             uint32_t a = S->vert[sq_ts_prev(S, h)], b = S->vert[sq_ts_prev(S, S->twin[h])];
-            double wt = (half_tan(S, v, w, a) + half_tan(S, v, w, b)) / dist3(S, v, w);
+            double wt = (half_tan(S, v, w, a) + half_tan(S, v, w, b)) / sq_ts_dist(S, v, w);
             if (!(wt > 0) || !isfinite(wt)) wt = 1e-12;
             diag += wt;
             if (nnz + 2 > cap) {
@@ -1054,44 +980,45 @@ done:
  * minimizes its area-weighted sum, and the conformal ratio s1 / s2. */
 static void distortion(const sq_param *P, sq_param_stats *stats)
 {
+    /* per face: 3D area, s1^2 + s2^2, s1^-2 + s2^-2 */
+    double *t = malloc(3 * (size_t)P->nf * sizeof *t);
+    if (!t) return; /* statistics only */
     double A = 0, B = 0, W = 0, cmean = 0, cmax = 0;
-    for (int pass = 0; pass < 2; pass++) {
-        double a2 = pass ? sqrt(B / A) : 1, dmean = 0, dmax = 0;
-        for (uint32_t f = 0; f < P->nf; f++) {
-            const double *p0 = P->pos + 3 * P->tri[3 * f], *p1 = P->pos + 3 * P->tri[3 * f + 1],
-                         *p2 = P->pos + 3 * P->tri[3 * f + 2];
-            double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-            double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-            double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-            double x2 = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1;
-            double cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-            double y2 = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]) / l1;
-            double area = 0.5 * l1 * y2;
-            if (!(area > 0)) continue;
-            const double *u0 = P->uv + 2 * P->tri_uv[3 * f], *u1 = P->uv + 2 * P->tri_uv[3 * f + 1],
-                         *u2 = P->uv + 2 * P->tri_uv[3 * f + 2];
-            /* J = [u1-u0, u2-u0] * inv([[l1, x2], [0, y2]]) */
-            double a = u1[0] - u0[0], b = u2[0] - u0[0], cc = u1[1] - u0[1], d = u2[1] - u0[1];
-            double j11 = a / l1, j12 = (b - a * x2 / l1) / y2, j21 = cc / l1, j22 = (d - cc * x2 / l1) / y2;
-            double fro = j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22, det = j11 * j22 - j12 * j21;
-            double disc = sqrt(fmax(fro * fro - 4 * det * det, 0));
-            double s1 = sqrt(0.5 * (fro + disc)), s2 = fabs(det) / s1; /* no cancellation */
-            if (!(s2 > 0)) continue;
-            if (!pass) {
-                A += area * (s1 * s1 + s2 * s2), B += area * (1 / (s1 * s1) + 1 / (s2 * s2)), W += area;
-                double cf = s1 / s2;
-                cmean += area * cf;
-                if (cf > cmax) cmax = cf;
-            } else {
-                double sd = a2 * (s1 * s1 + s2 * s2) + (1 / (s1 * s1) + 1 / (s2 * s2)) / a2;
-                dmean += area * sd;
-                if (sd > dmax) dmax = sd;
-            }
-        }
-        if (pass && W > 0) stats->sym_dirichlet_mean = dmean / W, stats->sym_dirichlet_max = dmax;
-        if (!(A > 0 && B > 0)) break;
+    for (uint32_t f = 0; f < P->nf; f++) {
+        t[3 * f] = 0;
+        const double *p0 = P->pos + 3 * P->tri[3 * f], *p1 = P->pos + 3 * P->tri[3 * f + 1],
+                     *p2 = P->pos + 3 * P->tri[3 * f + 2];
+        double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+        double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+        double x2 = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1;
+        double cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double y2 = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]) / l1;
+        double area = 0.5 * l1 * y2;
+        if (!(area > 0)) continue;
+        const double *u0 = P->uv + 2 * P->tri_uv[3 * f], *u1 = P->uv + 2 * P->tri_uv[3 * f + 1],
+                     *u2 = P->uv + 2 * P->tri_uv[3 * f + 2];
+        /* J = [u1-u0, u2-u0] * inv([[l1, x2], [0, y2]]) */
+        double a = u1[0] - u0[0], b = u2[0] - u0[0], c = u1[1] - u0[1], d = u2[1] - u0[1];
+        double j11 = a / l1, j12 = (b - a * x2 / l1) / y2, j21 = c / l1, j22 = (d - c * x2 / l1) / y2;
+        double fro = j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22, det = j11 * j22 - j12 * j21;
+        double disc = sqrt(fmax(fro * fro - 4 * det * det, 0));
+        double s1 = sqrt(0.5 * (fro + disc)), s2 = fabs(det) / s1; /* no cancellation */
+        if (!(s2 > 0)) continue;
+        t[3 * f] = area, t[3 * f + 1] = s1 * s1 + s2 * s2, t[3 * f + 2] = 1 / (s1 * s1) + 1 / (s2 * s2);
+        A += area * t[3 * f + 1], B += area * t[3 * f + 2], W += area;
+        cmean += area * s1 / s2;
+        if (s1 / s2 > cmax) cmax = s1 / s2;
     }
-    if (W > 0) stats->conformal_mean = cmean / W, stats->conformal_max = cmax;
+    if (W > 0 && A > 0 && B > 0) {
+        /* the scale a^2 = sqrt(B / A) minimizes sum area (a^2 p + q / a^2) */
+        double a2 = sqrt(B / A), dmax = 0;
+        for (uint32_t f = 0; f < P->nf; f++)
+            if (t[3 * f] > 0 && a2 * t[3 * f + 1] + t[3 * f + 2] / a2 > dmax) dmax = a2 * t[3 * f + 1] + t[3 * f + 2] / a2;
+        stats->sym_dirichlet_mean = (a2 * A + B / a2) / W, stats->sym_dirichlet_max = dmax;
+        stats->conformal_mean = cmean / W, stats->conformal_max = cmax;
+    }
+    free(t);
 }
 
 static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, sq_param *P,

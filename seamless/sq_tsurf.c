@@ -277,13 +277,6 @@ static double cdist(const double a[3], const double b[3])
 
 static int blocked(const sq_tsurf *S, uint32_t w) { return S->v_ncut[w] || is_cone(S, w); }
 
-static double edge_len(const sq_tsurf *S, uint32_t a, uint32_t b)
-{
-    double x = S->pos[3 * a] - S->pos[3 * b], y = S->pos[3 * a + 1] - S->pos[3 * b + 1],
-           z = S->pos[3 * a + 2] - S->pos[3 * b + 2];
-    return sqrt(x * x + y * y + z * z);
-}
-
 /* Route graph: nodes 0 .. nv-1 are vertices off the cut that are not
  * cones; node nv + h (h a halfedge of an uncut edge whose two ends are
  * blocked) is that edge's midpoint, a Steiner vertex made only if the route
@@ -469,7 +462,7 @@ sq_status sq_tsurf_route(sq_tsurf *S, uint32_t start, sq_route_target kind, int3
             }
             if (kind == SQ_ROUTE_SECTOR && w == tgt) continue;
             if (!blocked(S, w)) {
-                double e = edge_len(S, src, w) * (R.ring ? ring_factor(R.ring[w]) : 1);
+                double e = sq_ts_dist(S, src, w) * (R.ring ? ring_factor(R.ring[w]) : 1);
                 if (e < R.dist[w]) {
                     R.dist[w] = e, R.pred[w] = SRC;
                     if (heap_push(&R.H, w, e)) PUSH_FAIL;

@@ -19,6 +19,7 @@
 #ifndef SQ_TSURF_H
 #define SQ_TSURF_H
 
+#include <math.h>
 #include <stdint.h>
 
 #include "sq_error.h"
@@ -55,6 +56,13 @@ typedef struct sq_tsurf {
 static inline uint32_t sq_ts_next(const sq_tsurf *S, uint32_t h) { return S->next[h]; }
 static inline uint32_t sq_ts_prev(const sq_tsurf *S, uint32_t h) { return S->next[S->next[h]]; }
 static inline uint32_t sq_ts_head(const sq_tsurf *S, uint32_t h) { return S->vert[S->next[h]]; }
+/* Euclidean distance between vertices a and b */
+static inline double sq_ts_dist(const sq_tsurf *S, uint32_t a, uint32_t b)
+{
+    double x = S->pos[3 * a] - S->pos[3 * b], y = S->pos[3 * a + 1] - S->pos[3 * b + 1],
+           z = S->pos[3 * a + 2] - S->pos[3 * b + 2];
+    return sqrt(x * x + y * y + z * z);
+}
 /* next outgoing halfedge of the same origin, counterclockwise / clockwise */
 static inline uint32_t sq_ts_ccw(const sq_tsurf *S, uint32_t h) { return S->twin[sq_ts_prev(S, h)]; }
 static inline uint32_t sq_ts_cw(const sq_tsurf *S, uint32_t h) { return S->next[S->twin[h]]; }
@@ -106,7 +114,8 @@ int64_t sq_tsurf_open_vertex(sq_tsurf *S, uint32_t v);
 /* Route kinds for sq_tsurf_route. */
 typedef enum sq_route_target {
     SQ_ROUTE_CONE,   /* any cone off the cut with valence == target_valence */
-                     /* and cone_free[v] set                                */
+                     /* and cone_free[v] set (read only for vertices of     */
+                     /* that valence, so it may cover the input's vertices) */
     SQ_ROUTE_FREE,   /* a vertex off the cut, not a cone, reached at a       */
                      /* distance >= target_length (or the farthest one)      */
     SQ_ROUTE_SECTOR  /* the origin of target_sector, entered through an     */
