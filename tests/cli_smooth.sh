@@ -61,40 +61,8 @@ PY
 
 # Catmull-Clark split of a triangle mesh (OBJ or OFF): corner, two edge
 # midpoints, centroid; every triangle -> three quads (as in test_smooth.c).
-split() { # MESH OUT.obj
-  python3 - "$1" "$2" <<'PY'
-import sys
-path = sys.argv[1]
-V, F = [], []
-if path.endswith('.off'):
-    t = [w for l in open(path) for w in l.split('#')[0].split()]
-    i = 1 if t[0] == 'OFF' else 0
-    nv, nf = int(t[i]), int(t[i + 1]); i += 3
-    V = [[float(x) for x in t[i + 3 * k:i + 3 * k + 3]] for k in range(nv)]; i += 3 * nv
-    for _ in range(nf):
-        k = int(t[i]); F.append([int(x) for x in t[i + 1:i + 1 + k]]); i += 1 + k
-else:
-    for l in open(path):
-        w = l.split()
-        if w and w[0] == 'v': V.append([float(x) for x in w[1:4]])
-        elif w and w[0] == 'f': F.append([int(x.split('/')[0]) - 1 for x in w[1:]])
-out, edge, Q = [list(v) for v in V], {}, []
-def mid(a, b):
-    k = (min(a, b), max(a, b))
-    if k not in edge:
-        edge[k] = len(out); out.append([(V[a][j] + V[b][j]) / 2 for j in range(3)])
-    return edge[k]
-for f in F:
-    assert len(f) == 3, 'not a triangle mesh'
-    g = len(out); out.append([sum(V[v][j] for v in f) / 3 for j in range(3)])
-    for j in range(3):
-        a, b, p = f[j], f[(j + 1) % 3], f[(j + 2) % 3]
-        Q.append((a, mid(a, b), g, mid(p, a)))
-with open(sys.argv[2], 'w') as o:
-    o.writelines('v %.17g %.17g %.17g\n' % tuple(v) for v in out)
-    o.writelines('f %d %d %d %d\n' % tuple(x + 1 for x in q) for q in Q)
-PY
-}
+split() { python3 "$root/scripts/quad_split.py" "$1" "$2"; } # MESH OUT.obj
+
 asan=0
 ldd "$bin" 2>/dev/null | grep -q libasan && asan=1
 

@@ -21,13 +21,8 @@
 
 #include <cmocka.h>
 
-#include "sq_cones.h"
-#include "sq_io.h"
 #include "sq_param.h"
-
-#ifndef SQ_SHARED_DIR
-#define SQ_SHARED_DIR "../shared"
-#endif
+#include "sq_test_mesh.h"
 
 typedef struct model {
     sq_mesh m;
@@ -35,22 +30,13 @@ typedef struct model {
     char mesh_path[512], cone_path[512];
 } model;
 
-static int load(model *M, const char *rel)
+static void load(model *M, const char *rel)
 {
-    sq_error err = {0};
-    sq_soup soup;
-    memset(&soup, 0, sizeof soup);
     memset(M, 0, sizeof *M);
     snprintf(M->mesh_path, sizeof M->mesh_path, "%s/data/%s.obj", SQ_SHARED_DIR, rel);
     snprintf(M->cone_path, sizeof M->cone_path, "%s/data/%s_Th_hat", SQ_SHARED_DIR, rel);
-    if (sq_read_mesh(M->mesh_path, &soup, &err) != SQ_OK) return -1;
-    sq_status st = sq_mesh_from_soup(&soup, 0, &M->m, &err);
-    sq_soup_free(&soup);
-    if (st) return -1;
-    M->val = malloc(M->m.nv * sizeof *M->val);
-    sq_cone_format fmt;
-    if (!M->val || sq_cones_read(M->cone_path, M->m.nv, M->val, &fmt, &err)) return -1;
-    return 0;
+    sq_test_read_mesh(&M->m, M->mesh_path);
+    M->val = sq_test_read_valence(M->cone_path, M->m.nv);
 }
 
 static void unload(model *M)
@@ -82,7 +68,7 @@ static void test_eight_passes(void **state)
 {
     (void)state;
     model M;
-    assert_int_equal(load(&M, "mpz/eight"), 0);
+    load(&M, "mpz/eight");
     sq_param P;
     sq_param_init(&P);
     sq_param_stats st;
@@ -122,7 +108,7 @@ static void test_all_models_compatible(void **state)
     (void)state;
     for (size_t i = 0; i < sizeof models / sizeof *models; i++) {
         model M;
-        if (load(&M, models[i])) fail_msg("%s: cannot load", models[i]);
+        load(&M, models[i]);
         sq_param P;
         sq_param_init(&P);
         sq_param_stats st;
@@ -171,7 +157,7 @@ static void test_rejects_bad_cones(void **state)
 {
     (void)state;
     model M;
-    assert_int_equal(load(&M, "mpz/eight"), 0);
+    load(&M, "mpz/eight");
     sq_param P;
     sq_param_init(&P);
     sq_error err = {0};

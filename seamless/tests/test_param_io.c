@@ -236,6 +236,18 @@ static int referee(const sq_param *P, const tmpdir *t, int integer)
     return WEXITSTATUS(rc);
 }
 
+/* The referee's verdict on P, with --integer if integer, in a fresh
+ * temporary folder: exit code want (0 PASS, 1 FAIL); nothing is checked
+ * where the referee is missing. */
+static void expect_referee(const sq_param *P, int integer, int want)
+{
+    tmpdir t;
+    tmp_make(&t);
+    int rc = referee(P, &t, integer);
+    if (rc >= 0) assert_int_equal(rc, want);
+    tmp_remove(&t);
+}
+
 /* ---- tests ------------------------------------------------------------- */
 
 static void test_torus_passes(void **state)
@@ -254,11 +266,7 @@ static void test_torus_passes(void **state)
     uint32_t nseam = 0;
     for (uint32_t h = 0; h < 3 * P.nf; h++) nseam += P.he_seam[h];
     assert_int_equal(nseam, 2 * 8);
-    tmpdir t;
-    tmp_make(&t);
-    int rc = referee(&P, &t, 1);
-    if (rc >= 0) assert_int_equal(rc, 0);
-    tmp_remove(&t);
+    expect_referee(&P, 1, 0);
     param_release(&P);
 }
 
@@ -271,11 +279,7 @@ static void test_cube_passes(void **state)
     uint32_t nseam = 0;
     for (uint32_t h = 0; h < 3 * P.nf; h++) nseam += P.he_seam[h];
     assert_int_equal(nseam, 2 * 7); /* 12 cube edges, 5 glued in the net */
-    tmpdir t;
-    tmp_make(&t);
-    int rc = referee(&P, &t, 1);
-    if (rc >= 0) assert_int_equal(rc, 0);
-    tmp_remove(&t);
+    expect_referee(&P, 1, 0);
     param_release(&P);
 }
 
@@ -288,11 +292,7 @@ static void test_flipped_triangle(void **state)
     P.uv[2 * (1 * (N + 1) + 1)] = 2.5;
     P.uv[2 * (1 * (N + 1) + 1) + 1] = 2.5;
     expect_fail(&P, 0, "flipped", "face ");
-    tmpdir t;
-    tmp_make(&t);
-    int rc = referee(&P, &t, 0);
-    if (rc >= 0) assert_int_equal(rc, 1); /* the referee agrees */
-    tmp_remove(&t);
+    expect_referee(&P, 0, 1); /* the referee agrees */
     param_release(&P);
     /* a zero-area triangle is not positive either: vertex (1, 1) moved onto
      * its neighbour's point (2, 2) makes face 10 = (1,1) (2,1) (2,2) of
@@ -314,11 +314,7 @@ static void test_translation_off_by_1e12(void **state)
     expect_fail(&P, 0, "seam edge (", "not related exactly by a rotation");
     /* the referee's tolerance (1e-9 of the UV diagonal) lets it through:
      * our check is exact */
-    tmpdir t;
-    tmp_make(&t);
-    int rc = referee(&P, &t, 0);
-    if (rc >= 0) assert_int_equal(rc, 0);
-    tmp_remove(&t);
+    expect_referee(&P, 0, 0);
     param_release(&P);
 }
 
@@ -332,13 +328,8 @@ static void test_non_integer_translation(void **state)
     for (uint32_t b = 0; b <= N; b++) P.uv[2 * (N * (N + 1) + b)] = 4.5;
     expect_pass(&P, 0);
     expect_fail(&P, SQ_PARAM_VERIFY_INTEGER, "not integer", "4.5");
-    tmpdir t;
-    tmp_make(&t);
-    int rc = referee(&P, &t, 1);
-    if (rc >= 0) assert_int_equal(rc, 1);
-    rc = referee(&P, &t, 0);
-    if (rc >= 0) assert_int_equal(rc, 0);
-    tmp_remove(&t);
+    expect_referee(&P, 1, 1);
+    expect_referee(&P, 0, 0);
     param_release(&P);
 }
 
@@ -367,11 +358,7 @@ static void test_wrong_angle_sum(void **state)
     P.valence[2 * N + 2] = 3;
     expect_fail(&P, SQ_PARAM_VERIFY_INTEGER, "vertex 5 (input vertex) has UV angle sum",
                 "expected 5 x pi/2");
-    tmpdir t;
-    tmp_make(&t);
-    int rc = referee(&P, &t, 0);
-    if (rc >= 0) assert_int_equal(rc, 1);
-    tmp_remove(&t);
+    expect_referee(&P, 0, 1);
     param_release(&P);
     /* the cube without its cones */
     make_cube(&P);

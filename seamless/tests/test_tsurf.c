@@ -15,42 +15,11 @@
 
 #include <cmocka.h>
 
-#include "sq_cones.h"
 #include "sq_io.h"
 #include "sq_mesh.h"
+#include "sq_test_mesh.h"
 #include "sq_test_random.h"
 #include "sq_tsurf.h"
-
-#ifndef SQ_SHARED_DIR
-#define SQ_SHARED_DIR "../shared"
-#endif
-
-/* ---- loading ------------------------------------------------------------ */
-
-static void load_mesh(sq_mesh *m, const char *rel)
-{
-    char path[1024];
-    sq_error err;
-    sq_soup soup;
-    memset(&soup, 0, sizeof soup);
-    memset(m, 0, sizeof *m);
-    snprintf(path, sizeof path, "%s/data/%s", SQ_SHARED_DIR, rel);
-    if (sq_read_mesh(path, &soup, &err) != SQ_OK) fail_msg("%s", err.msg);
-    if (sq_mesh_from_soup(&soup, 0, m, &err) != SQ_OK) fail_msg("%s", err.msg);
-    sq_soup_free(&soup);
-}
-
-static int32_t *load_valence(const char *rel, uint32_t nv)
-{
-    char path[1024];
-    sq_error err;
-    sq_cone_format fmt;
-    int32_t *val = malloc(nv * sizeof *val);
-    assert_non_null(val);
-    snprintf(path, sizeof path, "%s/data/%s", SQ_SHARED_DIR, rel);
-    if (sq_cones_read(path, nv, val, &fmt, &err) != SQ_OK) fail_msg("%s", err.msg);
-    return val;
-}
 
 static double urand(void) { return (double)(rng() >> 11) * (1.0 / 9007199254740992.0); }
 
@@ -296,7 +265,7 @@ static void split_run(const char *rel, uint32_t nsplit)
     sq_mesh m;
     sq_tsurf S;
     sq_error err;
-    load_mesh(&m, rel);
+    sq_test_load_mesh(&m, rel);
     sq_tsurf_init(&S);
     uint32_t *he_map = malloc(m.nh * sizeof *he_map);
     assert_non_null(he_map);
@@ -507,7 +476,7 @@ static void boundary_run(const char *rel, uint32_t trials)
     sq_mesh m;
     sq_tsurf S;
     sq_error err;
-    load_mesh(&m, rel);
+    sq_test_load_mesh(&m, rel);
     sq_tsurf_init(&S);
     int64_t euler = sq_mesh_euler(&m);
     for (uint32_t tr = 0; tr < trials; tr++) {
@@ -664,7 +633,7 @@ static void route_sector_run(const char *rel, uint32_t rounds)
     sq_mesh m;
     sq_tsurf S;
     sq_error err;
-    load_mesh(&m, rel);
+    sq_test_load_mesh(&m, rel);
     assert_int_equal(sq_mesh_euler(&m), 2);
     sq_tsurf_init(&S);
     assert_int_equal(sq_tsurf_from_mesh(&m, NULL, &S, NULL, &err), SQ_OK);
@@ -739,8 +708,8 @@ static void route_cone_run(const char *rel, const char *cones, uint32_t rounds)
     sq_mesh m;
     sq_tsurf S;
     sq_error err;
-    load_mesh(&m, rel);
-    int32_t *val = load_valence(cones, m.nv);
+    sq_test_load_mesh(&m, rel);
+    int32_t *val = sq_test_load_valence(cones, m.nv);
     sq_tsurf_init(&S);
     assert_int_equal(sq_tsurf_from_mesh(&m, val, &S, NULL, &err), SQ_OK);
     for (uint32_t v = 0; v < m.nv; v++) assert_int_equal(S.valence[v], val[v]);
@@ -824,7 +793,7 @@ typedef struct walled {
 static void walled_make(walled *W, const char *rel)
 {
     sq_error err;
-    load_mesh(&W->m, rel);
+    sq_test_load_mesh(&W->m, rel);
     sq_tsurf_init(&W->S);
     assert_int_equal(sq_tsurf_from_mesh(&W->m, NULL, &W->S, NULL, &err), SQ_OK);
     sq_tsurf *S = &W->S;
@@ -1110,7 +1079,7 @@ static void test_route_cone_next_to_start(void **state)
     for (int tr = 0; tr < trials; tr++) {
         sq_mesh m;
         sq_tsurf S;
-        load_mesh(&m, "libigl/decimated-knight.off");
+        sq_test_load_mesh(&m, "libigl/decimated-knight.off");
         sq_tsurf_init(&S);
         assert_int_equal(sq_tsurf_from_mesh(&m, NULL, &S, NULL, &err), SQ_OK);
         int64_t euler = sq_mesh_euler(&m);
