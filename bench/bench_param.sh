@@ -3,8 +3,11 @@
 # seed's Table-1 models mpz/block, fertility_tri, genus3, helmet, holes3 and
 # cid/elephant first, then the other models with cones; mpz/twirl is left
 # out: its valence-1 cone is refused by design). Prints a markdown table:
-# time per step and in total (median of N runs, from --json), peak RSS,
-# faces in and out, quads of the domain, beside the seed's Table 1.
+# result, attempts, time per step (of the successful attempt) and wall time
+# in total (median of N runs), peak RSS,
+# faces in and out, quads of the domain, beside the seed's Table 1. Default
+# options (up to 8 attempts with the next cut-graph seed, guidance auto);
+# a failed model shows the wall time and memory until its clean failure.
 # Builds in Release mode into build-bench/.
 # usage: bench/bench_param.sh [N]
 set -euo pipefail
@@ -22,7 +25,7 @@ trap 'rm -rf "$tmp"' EXIT
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $reps runs per model (median)"
 echo
 python3 - "$bin" "$shared" "$tmp" "$reps" <<'PY'
-import json, statistics, subprocess, sys
+import json, os, statistics, subprocess, sys, time
 bin_, shared, tmp, reps = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 # seed Table 1: cones, genus, #F input, #F init, #F pad, time (s)
 seed = {"helmet": (9, 3, 1.6e3, 220, 1452, 0.13), "genus3": (22, 3, 13e3, 348, 576, 0.25),
@@ -38,38 +41,46 @@ for line in open(shared + "/data/MANIFEST.tsv"):
     models.append((f[0], f[9]))
 models.sort(key=lambda m: (m[0] not in table1, m[0]))
 steps = ["cut", "domain", "omega", "tree", "boundary", "cells", "tutte", "check"]
-print("| model | genus | cones | faces in | faces out | Steiner | quads (init + pad) | "
+
+def run(mesh, cfile):
+    """one `param` run with the default options; (json or None, wall s, peak RSS MB)"""
+    t0 = time.time()
+    with open(tmp + "/out.json", "w") as out, open(tmp + "/err.txt", "w") as errf:
+        p = subprocess.Popen([bin_, "param", mesh, "--cones", cfile, "-o", tmp + "/p.obj", "--json",
+                              "--quiet"], stdout=out, stderr=errf)
+        _, status, ru = os.wait4(p.pid, 0)
+    wall = time.time() - t0
+    try:
+        j = json.load(open(tmp + "/out.json"))
+    except ValueError:
+        j = {"ok": False, "error": {"message": open(tmp + "/err.txt").read().strip()}}
+    return j, wall, ru.ru_maxrss / 1024.0
+
+print("| model | genus | cones | result | attempts | faces in | faces out | Steiner | quads (init + pad) | "
       + " | ".join(steps) + " | total (s) | peak RSS (MB) | seed Table 1: init + pad, time |")
-print("|---|---:|---:|---:|---:|---:|---|" + "---:|" * len(steps) + "---:|---:|---|")
+print("|---|---:|---:|---|---:|---:|---:|---:|---|" + "---:|" * len(steps) + "---:|---:|---|")
 for path, cones in models:
     mesh = shared + "/data/" + path
     cfile = mesh.rsplit("/", 1)[0] + "/" + cones
     name = path.rsplit("/", 1)[1].rsplit(".", 1)[0]
-    runs, err = [], None
-    for _ in range(reps):
-        p = subprocess.run([bin_, "param", mesh, "--cones", cfile, "-o", tmp + "/p.obj", "--json",
-                            "--quiet"], capture_output=True, text=True)
-        try:
-            j = json.loads(p.stdout)
-        except ValueError:
-            j = {"ok": False, "error": {"message": p.stderr.strip()}}
-        if not j.get("ok"):
-            err = j.get("error", {}).get("message", "")[:80].replace("|", "/")
-            break
-        runs.append(j)
+    runs = [run(mesh, cfile) for _ in range(reps)]
     s = seed.get(name)
     ref = "%d + %d, %.2f s" % (s[3], s[4], s[5]) if s else ""
-    if err is not None:
-        cells = [path] + [""] * (6 + len(steps)) + ["FAILED: " + err, "", ref]
+    wall = statistics.median(r[1] for r in runs)
+    rss = max(r[2] for r in runs)
+    j = runs[0][0]
+    if not j.get("ok"):
+        msg = j.get("error", {}).get("message", "")
+        why = ("not injective in doubles" if "not injective" in msg else
+               "Steiner budget" if "Steiner" in msg else msg[:40].replace("|", "/"))
+        cells = [path, "", "", "FAIL: " + why, "8"] + [""] * (4 + len(steps)) + ["%.2f" % wall, "%.0f" % rss, ref]
         print("| " + " | ".join(cells) + " |")
         continue
-    med = lambda key: statistics.median(r["time_s"][key] for r in runs)
-    j = runs[0]
-    print("| %s | %d | %d | %d | %d | %d | %d + %d | %s | %.2f | %.0f | %s |" % (
-        path, j["genus"], j["cones"], j["faces_in"], j["faces_out"], j["steiner"],
-        j["quads_before_padding"], j["quads_added_by_padding"],
-        " | ".join("%.3f" % med(k) for k in steps), med("total"),
-        max(r["peak_rss_mb"] for r in runs), ref))
+    med = lambda key: statistics.median(r[0]["time_s"][key] for r in runs)
+    print("| %s | %d | %d | PASS | %d (seed %d) | %d | %d | %d | %d + %d | %s | %.2f | %.0f | %s |" % (
+        path, j["genus"], j["cones"], j["attempts"], j["seed_used"], j["faces_in"], j["faces_out"],
+        j["steiner"], j["quads_before_padding"], j["quads_added_by_padding"],
+        " | ".join("%.3f" % med(k) for k in steps), wall, rss, ref))
 PY
 echo
 echo "command: bench/bench_param.sh $reps"

@@ -17,6 +17,9 @@
 #include "sq_omega.h"
 #include "sq_param.h"
 
+/* default --attempts */
+#define SQ_PARAM_CLI_ATTEMPTS 8
+
 #define MAX_VALENCE_HIST 64
 
 static void help(FILE *f)
@@ -63,6 +66,19 @@ static void help(FILE *f)
             "                      tree, cone copies and branch points (seed Fig. 1)\n"
             "  --seed N            seed of the cut graph's sampling (default 1): another\n"
             "                      seed gives another valid parametrization\n"
+            "  --attempts N        tries before giving up (default %d): when a map fails\n"
+            "                      its exact check (a flipped or degenerate UV triangle,\n"
+            "                      too many Steiner vertices), try the next cut-graph\n"
+            "                      seed (attempt a uses seed N + a)\n"
+            "  --guide MODE        geometric guidance (seed 9.2): auto (default) is on for\n"
+            "                      genus >= 2, off below. on: the cut surface is laid out\n"
+            "                      in the unit disk; the cones are taken from its centre\n"
+            "                      outwards and each glued where the growing domain's\n"
+            "                      layout is closest to it (seed Algorithm 1), and Q's\n"
+            "                      corners are matched to the cut graph's at similar\n"
+            "                      angles (genus 0 and 1: only the cone matching). off: Q\n"
+            "                      with the fewest quads, each cone of Q given the\n"
+            "                      nearest free surface cone as the tree reaches it\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -81,7 +97,8 @@ static void help(FILE *f)
             "      --cones ../shared/data/mpz/helmet_Th_hat -o helmet.param.obj \\\n"
             "      --svg helmet.uv.svg --domain-svg helmet.omega.svg\n"
             "  python3 ../shared/tools/check_param.py ../shared/data/mpz/helmet.obj \\\n"
-            "      ../shared/data/mpz/helmet_Th_hat helmet.param.obj --integer\n");
+            "      ../shared/data/mpz/helmet_Th_hat helmet.param.obj --integer\n",
+            SQ_PARAM_CLI_ATTEMPTS);
 }
 
 typedef struct progress_state {
@@ -180,6 +197,8 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            "%llu,\n  \"quads\": %llu,\n",
            s->cut_edges, (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
            (unsigned long long)(s->quads_unpadded + s->quads_added));
+    printf("  \"attempts\": %u,\n  \"seed_used\": %llu,\n  \"guided\": %s,\n", s->attempts,
+           (unsigned long long)s->seed_used, s->guided ? "true" : "false");
     printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
            "  \"seam_edges\": %u,\n",
            s->tree_edges, s->tree_segments, s->chords, s->cells, s->seam_edges);
@@ -224,6 +243,8 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
         }
         printf("; valence:count)\n");
     }
+    printf("attempt        %u (cut-graph seed %llu, %s)\n", s->attempts,
+           (unsigned long long)s->seed_used, s->guided ? "guided (seed 9.2)" : "unguided");
     printf("cut graph      %u edges\n", s->cut_edges);
     printf("domain         %llu quads before padding + %llu padding = %llu\n",
            (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
@@ -254,7 +275,8 @@ int sq_cmd_param(int argc, char **argv)
     output out[NOUT];
     memset(out, 0, sizeof out);
     int json = 0, quiet = 0;
-    unsigned long long seed = 1;
+    unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS;
+    int guidance = SQ_GUIDE_AUTO;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -281,6 +303,25 @@ int sq_cmd_param(int argc, char **argv)
             if (e == arg || *e || errno || arg[0] == '-') {
                 fprintf(stderr, "seamquad param: --seed needs a non-negative integer, got '%s'\n",
                         arg);
+                return SQ_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--attempts") && has) {
+            char *e;
+            const char *arg = argv[++i];
+            errno = 0;
+            attempts = strtoull(arg, &e, 10);
+            if (e == arg || *e || errno || arg[0] == '-' || attempts < 1 || attempts > 1000) {
+                fprintf(stderr, "seamquad param: --attempts needs an integer from 1 to 1000, got "
+                                "'%s'\n", arg);
+                return SQ_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--guide") && has) {
+            const char *arg = argv[++i];
+            if (!strcmp(arg, "auto")) guidance = SQ_GUIDE_AUTO;
+            else if (!strcmp(arg, "on")) guidance = SQ_GUIDE_ON;
+            else if (!strcmp(arg, "off")) guidance = SQ_GUIDE_OFF;
+            else {
+                fprintf(stderr, "seamquad param: --guide takes auto, on or off, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
         } else if (a[0] == '-' && a[1]) {
@@ -350,6 +391,8 @@ int sq_cmd_param(int argc, char **argv)
     sq_param_options opt;
     sq_param_options_default(&opt);
     opt.seed = seed;
+    opt.attempts = (uint32_t)attempts;
+    opt.guidance = guidance;
     opt.progress = on_progress;
     opt.progress_ctx = &ps;
     if (sq_param_build(&mesh, val, &opt, &P, &stats, &err)) goto fail;

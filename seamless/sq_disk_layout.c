@@ -16,11 +16,6 @@ sq_status sq_disk_layout_tutte(const sq_metapolygon *P, uint32_t start, double *
     if (P->he_face[start] != SQ_NONE)
         return sq_error_set(err, SQ_ERR_ARGUMENT, "layout start %u is not a boundary halfedge",
                             start);
-    const uint32_t nv = P->nv;
-    uint32_t *idx = malloc((size_t)nv * sizeof *idx); /* interior index or SQ_NONE */
-    if (!idx) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    for (uint32_t v = 0; v < nv; v++) idx[v] = 0;
-
     /* boundary: clockwise on the unit circle */
     uint32_t h = start, t = 0;
     do {
@@ -28,12 +23,21 @@ sq_status sq_disk_layout_tutte(const sq_metapolygon *P, uint32_t start, double *
         double a = -6.283185307179586 * (double)t / (double)P->nbnd;
         xy[2 * v] = cos(a);
         xy[2 * v + 1] = sin(a);
-        idx[v] = SQ_NONE;
         t++;
         h = P->he_next[h];
     } while (h != start);
     assert(t == P->nbnd);
+    return sq_disk_layout_tutte_fixed(P, xy, err);
+}
 
+sq_status sq_disk_layout_tutte_fixed(const sq_metapolygon *P, double *xy, sq_error *err)
+{
+    const uint32_t nv = P->nv;
+    uint32_t *idx = malloc(((size_t)nv + 1) * sizeof *idx); /* interior index or SQ_NONE */
+    if (!idx) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    for (uint32_t v = 0; v < nv; v++) idx[v] = 0;
+    for (uint32_t h = 0; h < P->nh; h++)
+        if (P->he_face[h] == SQ_NONE) idx[P->he_vert[h]] = SQ_NONE;
     uint32_t ni = 0;
     for (uint32_t v = 0; v < nv; v++)
         if (idx[v] != SQ_NONE) idx[v] = ni++;

@@ -22,6 +22,10 @@ extern "C" {
 sq_status sq_disk_layout_tutte(const sq_metapolygon *P, uint32_t start, double *xy,
                                sq_error *err);
 
+/* The same interior solve with the boundary vertices' positions taken from
+ * xy as the caller set them (any convex placement gives an embedding). */
+sq_status sq_disk_layout_tutte_fixed(const sq_metapolygon *P, double *xy, sq_error *err);
+
 #ifdef __cplusplus
 }
 #endif

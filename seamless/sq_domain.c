@@ -230,7 +230,12 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
         return SQ_OK;
     }
     /* seed 5.2: positive excess first */
-    st = sq_valence_order_admissible(irr, n, D->order, err);
+    if (opt && opt->keep_order) {
+        memcpy(D->order, irr, (size_t)n * sizeof *irr);
+        st = sq_valence_check_sequence(D->order, n, NULL, err);
+    } else {
+        st = sq_valence_order_admissible(irr, n, D->order, err);
+    }
     free(irr);
     if (st) goto fail;
 

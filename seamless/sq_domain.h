@@ -41,6 +41,9 @@ typedef struct sq_domain_options {
                                           /* i = metapolygon side (i + offset) */
                                           /* mod k; SQ_NONE: best of all k      */
     const struct sq_build_options *build; /* glue-edge choices; NULL: seed 5.3 */
+    int keep_order;                       /* genus >= 2: the valences' order */
+                                          /* is the construction order (must */
+                                          /* be admissible; seed 9.2)        */
 } sq_domain_options;
 
 typedef struct sq_domain {

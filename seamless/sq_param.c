@@ -12,6 +12,7 @@
 #include "sq_cones.h"
 #include "sq_cut_graph.h"
 #include "sq_domain.h"
+#include "sq_guide.h"
 #include "sq_omega.h"
 #include "sq_omega_cells.h"
 #include "sq_predicates.h"
@@ -71,6 +72,17 @@ typedef struct ctx {
     uint32_t nuv, cap_uv;
     int dyadic;          /* seam UVs are multiples of 2^-dyadic             */
     int keep_flips;      /* debugging: return a map with flips (tests)     */
+    int guided;          /* seed 9.2 guidance (sq_param_options.guidance)  */
+    const int32_t *S_valence; /* the input's valences (m->nv)              */
+    double *step_xy;       /* disk positions of the steps' cones          */
+    double *surf_corner_angle; /* k: the cut graph's corners on the circle */
+    uint32_t *step_glue;   /* Algorithm 1's glue edge per step (rebuilds)  */
+    sq_guide_glue glue;
+    uint32_t *step_vertex; /* genus >= 2, guided: the surface cone of each */
+                           /* metapolygon step (seed 9.2, Algorithm 1)     */
+    uint32_t *q_target;  /* Q->nv: the surface cone matched to a cone of Q */
+                         /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
+                         /* when unguided                                  */
 } ctx;
 
 static void progress(ctx *c, const char *stage, double f)
@@ -115,8 +127,7 @@ static sq_status budget_error(ctx *c, const char *stage)
 {
     return sq_error_set(c->err, SQ_ERR_SOLVER,
                         "%s: more than %u Steiner vertices were needed (input %u vertices); the "
-                        "surface cut is too far from the domain's shape (seed 9 geometric guidance "
-                        "is not implemented yet)",
+                        "surface cut is too far from the domain's shape (try other --seed values)",
                         stage, 9u * c->S.nv_input + 100000u, c->S.nv_input);
 }
 
@@ -135,6 +146,64 @@ static void transition(const sq_omega *O, uint32_t l, const double x[2], double 
 }
 
 /* ---- step 1-3: cut graph, domain, Omega ------------------------------ */
+
+/* Seed 9.2 for genus >= 2: the cut surface in the unit disk, its cones
+ * ordered by distance from the centre (prefix condition kept); val (nc
+ * valences of the cones in vertex order) is reordered in place, and the
+ * surface vertex and disk position of every construction step recorded. */
+static sq_status guided_order(ctx *c, int32_t *val, uint32_t nc)
+{
+    const sq_mesh *m = c->m;
+    const uint32_t k = c->G.pattern.k;
+    double *v_xy = malloc(2 * (size_t)m->nv * sizeof *v_xy), *ang = malloc(((size_t)k + 1) * sizeof *ang);
+    double *pos = malloc((2 * (size_t)nc + 2) * sizeof *pos);
+    uint32_t *cv = malloc(((size_t)nc + 1) * sizeof *cv), *order = malloc(((size_t)nc + 1) * sizeof *order);
+    int32_t *v2 = malloc(((size_t)nc + 1) * sizeof *v2);
+    c->step_vertex = malloc(((size_t)nc + 1) * sizeof *c->step_vertex);
+    c->step_glue = malloc(((size_t)nc + 1) * sizeof *c->step_glue);
+    c->step_xy = malloc((2 * (size_t)nc + 2) * sizeof *c->step_xy);
+    sq_status st = SQ_OK;
+    if (!v_xy || !ang || !pos || !cv || !order || !v2 || !c->step_vertex || !c->step_xy || !c->step_glue) {
+        st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    st = sq_guide_surface_disk(m, &c->G, v_xy, ang, c->err);
+    if (st) goto done;
+    c->surf_corner_angle = ang;
+    ang = NULL;
+    uint32_t n = 0;
+    for (uint32_t v = 0; v < m->nv && n < nc; v++)
+        if (c->S_valence[v] != 4) {
+            cv[n] = v, pos[2 * n] = v_xy[2 * v], pos[2 * n + 1] = v_xy[2 * v + 1];
+            if (isnan(pos[2 * n])) {
+                st = sq_error_set(c->err, SQ_ERR_INTERNAL, "guidance: cone %u lies on the cut graph", v);
+                goto done;
+            }
+            n++;
+        }
+    if (n != nc) {
+        st = sq_error_set(c->err, SQ_ERR_INTERNAL, "guidance: %u cones, expected %u", n, nc);
+        goto done;
+    }
+    st = sq_guide_cone_order(nc, val, pos, order, c->err);
+    if (st) goto done;
+    for (uint32_t i = 0; i < nc; i++) {
+        v2[i] = val[order[i]];
+        c->step_vertex[i] = cv[order[i]];
+        c->step_xy[2 * i] = pos[2 * order[i]], c->step_xy[2 * i + 1] = pos[2 * order[i] + 1];
+    }
+    memcpy(val, v2, (size_t)nc * sizeof *val);
+done:
+    free(v_xy);
+    free(ang);
+    free(pos);
+    free(cv);
+    free(order);
+    free(v2);
+    return st;
+}
+
+static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt);
 
 static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st_out)
 {
@@ -162,6 +231,12 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
         st = sq_cut_graph_build(m, cone, &copt, &c->G, &cst, err);
     else
         st = sq_cut_graph_build_low_genus(m, cone, &copt, &c->G, &cst, err);
+    /* a loop or chain path the cut graph cannot route (it would need an
+     * edge split) depends on the sampling seed, not on the input: a
+     * limitation of this cut graph, retried with the next seed */
+    if (st == SQ_ERR_ARGUMENT && (cst.failure == SQ_CUT_FAIL_NO_PATH || cst.failure == SQ_CUT_FAIL_NO_LOOP ||
+                                  cst.failure == SQ_CUT_FAIL_NEEDS_SPLIT))
+        st = err ? (err->code = SQ_ERR_SOLVER) : SQ_ERR_SOLVER;
     if (st) goto done;
     st = sq_pattern_reversed(&c->G.pattern, &c->pcw, err);
     if (st) goto done;
@@ -171,10 +246,29 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     memset(&dopt, 0, sizeof dopt);
     dopt.offset = SQ_NONE;
     if (genus >= 2) dopt.pattern = &c->pcw;
+    sq_build_options bopt;
+    memset(&bopt, 0, sizeof bopt);
+    const int mode = c->opt ? c->opt->guidance : SQ_GUIDE_AUTO;
+    c->guided = mode == SQ_GUIDE_ON || (mode == SQ_GUIDE_AUTO && genus >= 2);
+    if (st_out) st_out->guided = c->guided;
+    if (genus >= 2 && c->guided) {
+        /* seed 9.2: cones in the order of their distance from the centre
+         * of the cut surface's disk layout, each glued where the layout of
+         * the growing metapolygon is closest to it (Algorithm 1) */
+        st = guided_order(c, val, nc);
+        if (st) goto done;
+        c->glue.c = c->step_xy;
+        c->glue.chosen = c->step_glue;
+        bopt.chooser = sq_guide_glue_chooser;
+        bopt.chooser_user = &c->glue;
+        dopt.build = &bopt;
+        dopt.keep_order = 1;
+    }
     st = sq_domain_build(genus, val, nc, &dopt, c->D, err);
     if (st) goto done;
     c->k = c->D->k;
     st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, err);
+    if (st == SQ_OK && c->step_vertex) st = align_corners(c, val, nc, &dopt);
     if (st) goto done;
     double t2 = now_s();
     progress(c, "omega", 0.2);
@@ -286,6 +380,205 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
     return SQ_OK;
 }
 
+/* ---- seed 9.2: which surface cone each cone of Q stands for ----------- */
+
+/* Genus >= 2 after Algorithm 1: the vertex of Q at the centre of the j-th
+ * irregular metapolygon face, i.e. the cone of construction step j.
+ * qv: D->ncones entries. */
+static sq_status step_q_vertices(ctx *c, uint32_t *qv)
+{
+    const sq_metapolygon *Q = &c->D->quads, *M = &c->D->meta;
+    uint32_t *mstep = malloc(((size_t)M->nf + 1) * sizeof *mstep);
+    uint8_t *qbnd = calloc((size_t)Q->nv + 1, 1);
+    sq_status st = SQ_OK;
+    if (!mstep || !qbnd) {
+        free(mstep), free(qbnd);
+        return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    }
+    uint32_t j = 0;
+    for (uint32_t f = 0; f < M->nf; f++) mstep[f] = M->f_valence[f] != 4 ? j++ : SQ_NONE;
+    for (uint32_t s = 0; s < c->D->ncones; s++) qv[s] = SQ_NONE;
+    for (uint32_t h = 0; h < Q->nh; h++)
+        if (Q->he_face[h] == SQ_NONE) qbnd[Q->he_vert[h]] = 1;
+    for (uint32_t v = 0; v < Q->nv && st == SQ_OK; v++) {
+        if (Q->v_nface[v] == 4 || qbnd[v]) continue;
+        uint32_t f = Q->he_face[Q->v_he[v]];
+        uint32_t s = f != SQ_NONE && f < c->D->nf_unpadded ? mstep[c->D->f_meta_face[f]] : SQ_NONE;
+        if (s == SQ_NONE || s >= c->D->ncones || Q->v_nface[v] != c->D->order[s] || qv[s] != SQ_NONE)
+            st = sq_error_set(c->err, SQ_ERR_INTERNAL, "guidance: cone vertex %u of Q has no step", v);
+        else
+            qv[s] = v;
+    }
+    for (uint32_t s = 0; st == SQ_OK && s < c->D->ncones; s++)
+        if (qv[s] == SQ_NONE) st = sq_error_set(c->err, SQ_ERR_INTERNAL, "guidance: step %u has no cone in Q", s);
+    free(mstep);
+    free(qbnd);
+    return st;
+}
+
+static double ang_diff(double a, double b)
+{
+    double d = fmod(a - b, 2 * 3.14159265358979323846);
+    if (d > 3.14159265358979323846) d -= 2 * 3.14159265358979323846;
+    if (d < -3.14159265358979323846) d += 2 * 3.14159265358979323846;
+    return d;
+}
+
+/* Seed 9.2 and seed 4 ("these can be brought into one-to-one
+ * correspondence, respecting cyclic order"): of the k cyclic shifts between
+ * Q's corners and the surface's, the one whose corners lie at the most
+ * similar angles when Q is laid out with its cones pinned to the surface
+ * cones' disk positions; Q is rebuilt with it (the shifts that admit no
+ * padding are skipped). */
+static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt)
+{
+    sq_domain *D = c->D;
+    const sq_metapolygon *Q = &D->quads;
+    const uint32_t k = D->k;
+    if (D->slid) return SQ_OK;
+    uint32_t *qv = malloc(((size_t)D->ncones + 1) * sizeof *qv);
+    double *xy = malloc((2 * (size_t)Q->nv + 2) * sizeof *xy);
+    double *cost = malloc((size_t)k * sizeof *cost), *psi = malloc((size_t)k * sizeof *psi);
+    uint32_t *ord = malloc((size_t)k * sizeof *ord);
+    sq_domain *D2 = calloc(1, sizeof *D2);
+    sq_status st = SQ_OK;
+    if (!qv || !xy || !cost || !psi || !ord || !D2) {
+        st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    st = step_q_vertices(c, qv);
+    if (st == SQ_OK) st = sq_guide_metapolygon_layout(Q, c->step_xy, D->ncones, qv, xy, c->err);
+    if (st) goto done;
+    /* psi[j]: angle of the unpadded quad mesh's corner j (Q corner i is its
+     * corner (i + offset) % k) */
+    for (uint32_t i = 0; i < k; i++) {
+        uint32_t v = D->corner_vert[i];
+        psi[(i + D->offset) % k] = atan2(xy[2 * v + 1], xy[2 * v]);
+    }
+    for (uint32_t o = 0; o < k; o++) {
+        cost[o] = 0;
+        for (uint32_t i = 0; i < k; i++) {
+            double d = ang_diff(psi[(i + o) % k], c->surf_corner_angle[(k - (i + c->r) % k) % k]);
+            cost[o] += d * d;
+        }
+        uint32_t j = o;
+        while (j > 0 && cost[ord[j - 1]] > cost[o]) ord[j] = ord[j - 1], j--;
+        ord[j] = o;
+    }
+    /* rebuilds take Algorithm 1's recorded glue edges (no layouts) */
+    c->step_glue[0] = SQ_NONE;
+    sq_build_options again;
+    memset(&again, 0, sizeof again);
+    again.glue_he = c->step_glue;
+    dopt->build = &again;
+    for (uint32_t t = 0; t < k; t++) {
+        uint32_t o = ord[t];
+        if (o == D->offset) break; /* the current domain is the best */
+        sq_domain_init(D2);
+        dopt->offset = o;
+        if (sq_domain_build(D->genus, val, nc, dopt, D2, NULL) == SQ_OK && !D2->slid) {
+            sq_domain_free(c->D);
+            free(c->D);
+            c->D = D2;
+            D2 = NULL;
+            st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, c->err);
+            break;
+        }
+        sq_domain_free(D2);
+    }
+done:
+    if (D2) free(D2);
+    free(qv);
+    free(xy);
+    free(cost);
+    free(psi);
+    free(ord);
+    return st;
+}
+
+/* Lays out the cut surface and Q in the unit disk with corresponding corners
+ * at the same angles and matches Q's cones to the surface's by position
+ * (sq_guide.h). Q corner i is the start of counterclockwise surface side
+ * (k - (i + r) % k) % k, as in cut_surface. */
+static sq_status guide(ctx *c)
+{
+    const sq_mesh *m = c->m;
+    const sq_metapolygon *Q = &c->D->quads;
+    const uint32_t k = c->k;
+    sq_status st = SQ_OK;
+    double *v_xy = malloc(2 * (size_t)m->nv * sizeof *v_xy);
+    double *q_xy = malloc(2 * (size_t)Q->nv * sizeof *q_xy);
+    double *sang = malloc((size_t)k * sizeof *sang), *qang = malloc((size_t)k * sizeof *qang);
+    uint32_t nq = 0, ns = 0;
+    uint32_t *qv = malloc(((size_t)Q->nv + 1) * sizeof *qv), *sv = malloc(((size_t)m->nv + 1) * sizeof *sv);
+    double *a = NULL, *b = NULL;
+    int32_t *av = NULL, *bv = NULL;
+    uint32_t *match = NULL;
+    uint8_t *qbnd = calloc((size_t)Q->nv + 1, 1);
+    c->q_target = malloc((size_t)Q->nv * sizeof *c->q_target);
+    if (!v_xy || !q_xy || !sang || !qang || !qv || !sv || !qbnd || !c->q_target) {
+        st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t v = 0; v < Q->nv; v++) c->q_target[v] = SQ_NONE;
+    if (c->step_vertex) {
+        /* Algorithm 1 built Q: the centre of the j-th irregular face of the
+         * metapolygon stands for the cone of step j */
+        free(qv);
+        qv = malloc(((size_t)c->D->ncones + 1) * sizeof *qv);
+        if (!qv) {
+            st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        st = step_q_vertices(c, qv);
+        for (uint32_t j = 0; st == SQ_OK && j < c->D->ncones; j++) c->q_target[qv[j]] = c->step_vertex[j];
+        goto done;
+    }
+    st = sq_guide_surface_disk(m, &c->G, v_xy, sang, c->err);
+    if (st) goto done;
+    for (uint32_t i = 0; i < k; i++) qang[i] = sang[(k - (i + c->r) % k) % k];
+    st = sq_guide_domain_disk(c->D, qang, q_xy, c->err);
+    if (st) goto done;
+    for (uint32_t h = 0; h < Q->nh; h++)
+        if (Q->he_face[h] == SQ_NONE) qbnd[Q->he_vert[h]] = 1;
+    for (uint32_t v = 0; v < Q->nv; v++)
+        if (!qbnd[v] && Q->v_nface[v] != 4) qv[nq++] = v;
+    for (uint32_t v = 0; v < m->nv; v++)
+        if (c->S.valence[v] != 4 && !isnan(v_xy[2 * v])) sv[ns++] = v;
+    if (nq != ns) goto unguided; /* cones on the cut or Q's boundary */
+    a = malloc((2 * (size_t)nq + 2) * sizeof *a), b = malloc((2 * (size_t)nq + 2) * sizeof *b);
+    av = malloc(((size_t)nq + 1) * sizeof *av), bv = malloc(((size_t)nq + 1) * sizeof *bv);
+    match = malloc(((size_t)nq + 1) * sizeof *match);
+    if (!a || !b || !av || !bv || !match) {
+        st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t i = 0; i < nq; i++) {
+        a[2 * i] = q_xy[2 * qv[i]], a[2 * i + 1] = q_xy[2 * qv[i] + 1], av[i] = (int32_t)Q->v_nface[qv[i]];
+        b[2 * i] = v_xy[2 * sv[i]], b[2 * i + 1] = v_xy[2 * sv[i] + 1], bv[i] = c->S.valence[sv[i]];
+    }
+    if (sq_guide_match(nq, a, av, b, bv, match, NULL) != SQ_OK) goto unguided;
+    for (uint32_t i = 0; i < nq; i++) c->q_target[qv[i]] = sv[match[i]];
+    goto done;
+unguided:
+    free(c->q_target);
+    c->q_target = NULL;
+done:
+    free(v_xy);
+    free(q_xy);
+    free(sang);
+    free(qang);
+    free(qv);
+    free(sv);
+    free(qbnd);
+    free(a);
+    free(b);
+    free(av);
+    free(bv);
+    free(match);
+    return st;
+}
+
 typedef struct node_item {
     uint32_t ti;     /* tree vertex index */
     uint32_t sector; /* M sector for the next child */
@@ -302,9 +595,10 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
     uint32_t *ti_of = malloc((size_t)Q->nv * sizeof *ti_of);
     uint32_t *seg_of = malloc((size_t)Q->nh * sizeof *seg_of);
     uint8_t *free_cone = malloc(S->nv_input); /* cones are input vertices */
+    uint8_t *only = calloc(S->nv_input, 1);    /* the guided target alone   */
     node_item *stack = malloc(((size_t)T->nverts + 1) * sizeof *stack);
     uint32_t *path = NULL, npath = 0;
-    if (!ti_of || !seg_of || !free_cone || !stack) {
+    if (!ti_of || !seg_of || !free_cone || !only || !stack) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -356,21 +650,30 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
             st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
             goto done;
         }
+        /* guided: only the matched cone is a target (seed 9.2) */
+        uint32_t tgt = is_cone_node && c->q_target ? c->q_target[qend] : SQ_NONE;
+        if (tgt != SQ_NONE && !free_cone[tgt]) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "cone at vertex %u is matched twice", tgt);
+            goto done;
+        }
+        const uint8_t *mask = free_cone;
+        if (tgt != SQ_NONE) only[tgt] = 1, mask = only;
         if (is_cone_node)
             for (uint32_t v = 0; v < S->nv_input; v++)
-                if (free_cone[v] && S->valence[v] == (int32_t)Q->v_nface[qend] && sq_tsurf_open_vertex(S, v) < 0) {
+                if (mask[v] && S->valence[v] == (int32_t)Q->v_nface[qend] && sq_tsurf_open_vertex(S, v) < 0) {
                     st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                     goto done;
                 }
         st = sq_tsurf_route(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
-                            is_cone_node ? (int32_t)Q->v_nface[qend] : 4, free_cone, tlen, SQ_NONE,
+                            is_cone_node ? (int32_t)Q->v_nface[qend] : 4, mask, tlen, SQ_NONE,
                             &path, &npath, err);
         if (st == SQ_ERR_INTERNAL) {
             npath = 0;
             st = sq_tsurf_route_faces(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
-                                      is_cone_node ? (int32_t)Q->v_nface[qend] : 4, free_cone, tlen,
+                                      is_cone_node ? (int32_t)Q->v_nface[qend] : 4, mask, tlen,
                                       SQ_NONE, &path, &npath, err);
         }
+        if (tgt != SQ_NONE) only[tgt] = 0;
         if (st == SQ_OK && sec_reserve(c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         if (st) goto done;
         if (over_budget(c)) {
@@ -399,6 +702,7 @@ done:
     free(ti_of);
     free(seg_of);
     free(free_cone);
+    free(only);
     free(stack);
     free(path);
     return st;
@@ -1121,8 +1425,9 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
     return SQ_OK;
 }
 
-sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                         sq_param *out, sq_param_stats *stats, sq_error *err)
+/* One attempt with the options as given (opt is never NULL here). */
+static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                            sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     double t_start = now_s();
     sq_param_stats local;
@@ -1136,6 +1441,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     memset(&c, 0, sizeof c);
     c.m = m, c.opt = opt, c.err = err;
     c.keep_flips = opt ? opt->allow_flips : 0;
+    c.S_valence = valence;
     sq_tsurf_init(&c.S);
     sq_cut_graph_init(&c.G);
     sq_pattern_init(&c.pcw);
@@ -1165,6 +1471,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     uint32_t root_he = SQ_NONE;
     st = cut_surface(&c, hmap, &root_he);
     if (st == SQ_OK && sec_reserve(&c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    if (st == SQ_OK && c.guided) st = guide(&c);
     if (st == SQ_OK) st = replicate_tree(&c, root_he);
     if (st) goto done;
     double t1 = now_s();
@@ -1223,9 +1530,39 @@ done:
     free(c.T);
     free(c.O);
     free(c.o2m);
+    free(c.q_target);
+    free(c.step_vertex);
+    free(c.step_glue);
+    sq_guide_glue_free(&c.glue);
+    free(c.step_xy);
+    free(c.surf_corner_angle);
     free(c.sec_uv);
     free(c.uv);
     free(hmap);
     free(v_uv);
+    return st;
+}
+
+sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                         sq_param *out, sq_param_stats *stats, sq_error *err)
+{
+    double t_start = now_s();
+    sq_param_options o;
+    if (opt) o = *opt;
+    else sq_param_options_default(&o);
+    const uint32_t n = o.attempts ? o.attempts : 1;
+    const uint64_t seed0 = o.seed;
+    sq_param_stats local;
+    if (!stats) stats = &local;
+    sq_status st = SQ_OK;
+    for (uint32_t a = 0; a < n; a++) {
+        o.seed = seed0 + a;
+        if (a > 0 && o.progress) o.progress(o.progress_ctx, "retry with another cut graph", 0.0);
+        st = build_once(m, valence, &o, out, stats, err);
+        stats->attempts = a + 1;
+        stats->seed_used = o.seed;
+        if (st != SQ_ERR_SOLVER) break;
+    }
+    stats->t_total = now_s() - t_start;
     return st;
 }

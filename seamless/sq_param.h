@@ -46,7 +46,31 @@ typedef struct sq_param_options {
     /* Diagnostics only: return the map even when some UV triangles are not
      * positively oriented (sq_param_verify then rejects it). Default 0. */
     int allow_flips;
+    /* Geometric guidance (seed 9.2), SQ_GUIDE_*: which surface cone each
+     * cone of Q stands for and how Q is built. Default SQ_GUIDE_AUTO. */
+    int guidance;
+    /* Attempts before giving up (default 1; 0 counts as 1): attempt a uses
+     * the cut-graph seed  seed + a. Only failures of the map itself
+     * (SQ_ERR_SOLVER: a flipped or degenerate UV triangle, the Steiner
+     * budget) are retried; the result is the first map that passes every
+     * exact check. */
+    uint32_t attempts;
 } sq_param_options;
+
+/* Guidance modes (sq_param_options.guidance):
+ *  SQ_GUIDE_AUTO: SQ_GUIDE_ON for genus >= 2, SQ_GUIDE_OFF below (where
+ *    only the cone matching of SQ_GUIDE_ON exists, and it measured worse).
+ *  SQ_GUIDE_OFF: Q as seed 5.3 builds it (fewest quads); the cone tree
+ *    takes the nearest free surface cone of the right valence.
+ *  SQ_GUIDE_ON: the cut surface is laid out in the unit disk (sq_guide.h).
+ *    Genus >= 2: the cones are taken by distance from the disk centre and
+ *    glued where the growing metapolygon's layout is closest to them (seed
+ *    9.2, Algorithm 1), so each cone of Q stands for its own surface cone;
+ *    of the cyclic correspondences of Q's corners with the cut graph's, the
+ *    one whose corners lie at the most similar angles is used. Genus 0 and
+ *    1: Q as for OFF, laid out in the disk too, each cone of Q matched to
+ *    the nearest surface cone of its valence. */
+enum { SQ_GUIDE_AUTO = 0, SQ_GUIDE_OFF = 1, SQ_GUIDE_ON = 2 };
 
 void sq_param_options_default(sq_param_options *opt);
 
@@ -65,7 +89,10 @@ typedef struct sq_param_stats {
      * conformal ratio sigma1/sigma2 */
     double sym_dirichlet_mean, sym_dirichlet_max;
     double conformal_mean, conformal_max;
-    /* seconds per step */
+    uint32_t attempts;                      /* attempts made (1 = first)      */
+    uint64_t seed_used;                     /* cut-graph seed of the result   */
+    int guided;                             /* 1: seed 9.2 guidance was used  */
+    /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
 } sq_param_stats;
 

@@ -419,7 +419,7 @@ static void test_errors(void **state)
     sq_pattern torus;
     sq_pattern_init(&torus);
     assert_int_equal(sq_pattern_torus(&torus, NULL), SQ_OK);
-    sq_domain_options opt = {&torus, SQ_NONE, NULL};
+    sq_domain_options opt = {&torus, SQ_NONE, NULL, 0};
     int32_t v[] = {2, 6};
     assert_int_equal(sq_domain_build(1, v, 2, &opt, &D, &err), SQ_ERR_ARGUMENT);
     assert_non_null(strstr(err.msg, "two pieces"));
@@ -428,12 +428,12 @@ static void test_errors(void **state)
     assert_int_equal(sq_domain_verify(&D, NULL, 0, &err), SQ_OK);
     sq_domain_free(&D);
     sq_pattern_free(&torus);
-    sq_domain_options bad = {NULL, 6, NULL};
+    sq_domain_options bad = {NULL, 6, NULL, 0};
     assert_int_equal(sq_domain_build(1, v, 2, &bad, &D, &err), SQ_ERR_ARGUMENT);
     assert_non_null(strstr(err.msg, "offset"));
     /* every fixed offset (pattern) works on its own */
     for (uint32_t o = 0; o < 6; o++) {
-        sq_domain_options fix = {NULL, o, NULL};
+        sq_domain_options fix = {NULL, o, NULL, 0};
         int32_t w[] = {3, 3, 5, 5, 2, 6};
         if (sq_domain_build(1, w, 6, &fix, &D, &err)) fail_msg("offset %u: %s", o, err.msg);
         assert_int_equal(D.offset, o);

@@ -1,0 +1,253 @@
+/* seamquad: seed 9.2, Algorithm 1 (guided metapolygon construction): after
+ * each extension the metapolygon is laid out in the plane with the
+ * barycentres of its irregular faces pinned to the positions of their
+ * singularities in the unit-disk layout of the cut surface, and the next
+ * irregular face is glued to the boundary edge closest to the next
+ * singularity. The layout is a least-squares conformal one in the sense of
+ * [LPRM02] for polygons: every face as close as possible to a similar copy
+ * of the regular polygon with its number of sides (one similarity per
+ * face, shared edges couple them). It only guides a choice, so it needs no
+ * strict property (seed 9.2). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sq_guide.h"
+#include "sq_sparse.h"
+
+#define SQ_GUIDE_PI 3.14159265358979323846
+
+typedef struct trip {
+    uint32_t *r, *c;
+    double *v;
+    size_t n, cap;
+} trip;
+
+static int trip_add(trip *T, uint32_t r, uint32_t c, double v)
+{
+    if (r < c) return 0; /* lower triangle only (sq_spd_factor) */
+    if (T->n == T->cap) {
+        size_t cap = T->cap ? 2 * T->cap : 1024;
+        uint32_t *r2 = realloc(T->r, cap * sizeof *r2);
+        if (r2) T->r = r2;
+        uint32_t *c2 = realloc(T->c, cap * sizeof *c2);
+        if (c2) T->c = c2;
+        double *v2 = realloc(T->v, cap * sizeof *v2);
+        if (v2) T->v = v2;
+        if (!r2 || !c2 || !v2) return -1;
+        T->cap = cap;
+    }
+    T->r[T->n] = r, T->c[T->n] = c, T->v[T->n] = v, T->n++;
+    return 0;
+}
+
+/* adds w (row . u - rhs)^2 to the normal equations */
+static int add_row(trip *T, double *b, const uint32_t *idx, const double *coef, int k, double rhs,
+                   double w)
+{
+    for (int i = 0; i < k; i++) {
+        b[idx[i]] += w * coef[i] * rhs;
+        for (int j = 0; j < k; j++)
+            if (trip_add(T, idx[i], idx[j], w * coef[i] * coef[j])) return -1;
+    }
+    return 0;
+}
+
+sq_status sq_guide_metapolygon_layout(const sq_metapolygon *P, const double *c, uint32_t npinned,
+                                      const uint32_t *pin_vert, double *xy, sq_error *err)
+{
+    const uint32_t nv = P->nv, nf = P->nf, n = 2 * nv + 2 * nf;
+    trip T = {0};
+    double *b = calloc((size_t)n + 1, sizeof *b), *x = malloc(((size_t)n + 1) * sizeof *x);
+    uint32_t *fv = NULL;
+    sq_spd *F = NULL;
+    sq_status st = SQ_OK;
+    uint32_t maxval = 0;
+    for (uint32_t f = 0; f < nf; f++)
+        if (P->f_valence[f] > maxval) maxval = P->f_valence[f];
+    fv = malloc(((size_t)maxval + 1) * sizeof *fv);
+    if (!b || !x || !fv) goto nomem;
+    uint32_t irr = 0;
+    for (uint32_t f = 0; f < nf; f++) {
+        const uint32_t k = P->f_valence[f];
+        uint32_t h = P->f_he[f];
+        for (uint32_t j = 0; j < k; j++, h = P->he_next[h]) fv[j] = P->he_vert[h];
+        const uint32_t ax = 2 * nv + 2 * f, ay = ax + 1;
+        for (uint32_t j = 0; j < k; j++) {
+            uint32_t p = fv[j], q = fv[(j + 1) % k];
+            double t0 = 2 * SQ_GUIDE_PI * j / k, t1 = 2 * SQ_GUIDE_PI * (j + 1) / k;
+            double dx = cos(t1) - cos(t0), dy = sin(t1) - sin(t0);
+            /* (x_q - x_p) - a (dx, dy) = 0, a complex */
+            uint32_t i1[4] = {2 * q, 2 * p, ax, ay};
+            double c1[4] = {1, -1, -dx, dy};
+            uint32_t i2[4] = {2 * q + 1, 2 * p + 1, ax, ay};
+            double c2[4] = {1, -1, -dy, -dx};
+            if (add_row(&T, b, i1, c1, 4, 0, 1) || add_row(&T, b, i2, c2, 4, 0, 1)) goto nomem;
+        }
+        /* a small pull towards one common similarity keeps the system
+         * definite before two faces are pinned */
+        if (trip_add(&T, ax, ax, 1e-3) || trip_add(&T, ay, ay, 1e-3)) goto nomem;
+        b[ax] += 1e-3 * 0.1;
+        if (!pin_vert && k != 4 && irr < npinned) {
+            uint32_t ix[64], iy[64];
+            double cf[64];
+            uint32_t kk = k < 64 ? k : 64;
+            for (uint32_t j = 0; j < kk; j++) ix[j] = 2 * fv[j], iy[j] = 2 * fv[j] + 1, cf[j] = 1.0 / kk;
+            if (add_row(&T, b, ix, cf, (int)kk, c[2 * irr], 10) ||
+                add_row(&T, b, iy, cf, (int)kk, c[2 * irr + 1], 10))
+                goto nomem;
+        }
+        if (k != 4) irr++;
+    }
+    for (uint32_t j = 0; pin_vert && j < npinned; j++) {
+        uint32_t ix = 2 * pin_vert[j], iy = ix + 1;
+        double one = 1;
+        if (add_row(&T, b, &ix, &one, 1, c[2 * j], 10) || add_row(&T, b, &iy, &one, 1, c[2 * j + 1], 10))
+            goto nomem;
+    }
+    if (!pin_vert && irr < npinned) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "guidance: %u irregular faces, expected %u", irr, npinned);
+        goto done;
+    }
+    st = sq_spd_factor(n, T.n, T.r, T.c, T.v, &F, err);
+    if (st == SQ_OK) st = sq_spd_solve(F, 1, b, x, err);
+    if (st) goto done;
+    memcpy(xy, x, 2 * (size_t)nv * sizeof *xy);
+    goto done;
+nomem:
+    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+done:
+    if (F) sq_spd_free(F);
+    free(T.r);
+    free(T.c);
+    free(T.v);
+    free(b);
+    free(x);
+    free(fv);
+    return st;
+}
+
+static double seg_dist2(const double *p, const double *a, const double *b)
+{
+    double ex = b[0] - a[0], ey = b[1] - a[1], l2 = ex * ex + ey * ey;
+    double t = l2 > 0 ? ((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / l2 : 0;
+    if (t < 0) t = 0;
+    if (t > 1) t = 1;
+    double dx = a[0] + t * ex - p[0], dy = a[1] + t * ey - p[1];
+    return dx * dx + dy * dy;
+}
+
+/* New vertices (index >= G->nv_laid) placed at the average of their placed
+ * neighbours, a few sweeps; old vertices keep their layout. */
+static void extend_layout(const sq_metapolygon *P, sq_guide_glue *G)
+{
+    const uint32_t nv0 = G->nv_laid;
+    uint8_t *placed = calloc(P->nv + 1, 1);
+    double *sum = malloc((3 * (size_t)P->nv + 3) * sizeof *sum);
+    if (!placed || !sum) {
+        free(placed), free(sum);
+        G->nv_laid = 0; /* forces a full layout next time */
+        return;
+    }
+    memset(placed, 1, nv0);
+    for (int sweep = 0; sweep < 40; sweep++) {
+        memset(sum + 3 * (size_t)nv0, 0, 3 * (size_t)(P->nv - nv0) * sizeof *sum);
+        for (uint32_t h = 0; h < P->nh; h++) {
+            uint32_t v = P->he_vert[h], w = P->he_vert[P->he_twin[h]];
+            if (v < nv0 || !placed[w]) continue;
+            sum[3 * v] += G->xy[2 * w], sum[3 * v + 1] += G->xy[2 * w + 1], sum[3 * v + 2] += 1;
+        }
+        for (uint32_t v = nv0; v < P->nv; v++)
+            if (sum[3 * v + 2] > 0) {
+                G->xy[2 * v] = sum[3 * v] / sum[3 * v + 2], G->xy[2 * v + 1] = sum[3 * v + 1] / sum[3 * v + 2];
+                placed[v] = 1;
+            }
+    }
+    free(placed);
+    free(sum);
+}
+
+sq_status sq_guide_glue_chooser(void *user, const sq_metapolygon *P, uint32_t step, uint32_t valence,
+                                uint32_t *glue_he, sq_error *err)
+{
+    sq_guide_glue *G = user;
+    const double *c = G->c;
+    *glue_he = SQ_NONE;
+    if (G->cap < P->nv) {
+        double *xy = realloc(G->xy, (2 * (size_t)P->nv + 2) * sizeof *xy);
+        if (!xy) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        G->xy = xy, G->cap = P->nv;
+    }
+    /* a full layout while the metapolygon is small or has grown by a
+     * quarter since the last one; otherwise the last layout, extended */
+    if (P->nf <= 5000 || G->nv_laid == 0 || P->nf > G->nf_laid + G->nf_laid / 4) {
+        sq_status st = sq_guide_metapolygon_layout(P, c, step, NULL, G->xy, err);
+        if (st) return st;
+        G->nv_laid = P->nv, G->nf_laid = P->nf;
+    } else {
+        extend_layout(P, G);
+    }
+    const double *xy = G->xy;
+    double best = INFINITY;
+    for (uint32_t h = 0; h < P->nh; h++) {
+        if (P->he_face[h] != SQ_NONE) continue;
+        if (sq_metapolygon_predict_quads(P, valence, h) == UINT64_MAX) continue;
+        double d = seg_dist2(c + 2 * step, xy + 2 * P->he_vert[h], xy + 2 * P->he_vert[P->he_next[h]]);
+        if (d < best) best = d, *glue_he = h;
+    }
+    if (G->chosen) G->chosen[step] = *glue_he;
+    return SQ_OK;
+}
+
+void sq_guide_glue_free(sq_guide_glue *G)
+{
+    free(G->xy);
+    G->xy = NULL;
+    G->cap = G->nv_laid = G->nf_laid = 0;
+}
+
+sq_status sq_guide_cone_order(uint32_t n, const int32_t *valence, const double *xy, uint32_t *order,
+                              sq_error *err)
+{
+    uint32_t *pref = malloc(((size_t)n + 1) * sizeof *pref);
+    uint8_t *used = calloc((size_t)n + 1, 1);
+    double *r = malloc(((size_t)n + 1) * sizeof *r);
+    if (!pref || !used || !r) {
+        free(pref), free(used), free(r);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    }
+    /* preferred: by distance from the disk centre (insertion sort: n is the
+     * number of cones) */
+    for (uint32_t i = 0; i < n; i++) {
+        r[i] = xy[2 * i] * xy[2 * i] + xy[2 * i + 1] * xy[2 * i + 1];
+        uint32_t j = i;
+        while (j > 0 && r[pref[j - 1]] > r[i]) pref[j] = pref[j - 1], j--;
+        pref[j] = i;
+    }
+    /* seed 9.2: move valences > 4 forward where the prefix sum of l - 4
+     * would reach -4 */
+    int64_t sum = 0;
+    uint32_t out = 0, next = 0;
+    sq_status st = SQ_OK;
+    while (out < n) {
+        while (next < n && used[pref[next]]) next++;
+        uint32_t i = pref[next];
+        if (sum + valence[i] - 4 <= -4) {
+            uint32_t j = next + 1;
+            while (j < n && (used[pref[j]] || valence[pref[j]] <= 4)) j++;
+            if (j >= n) {
+                st = sq_error_set(err, SQ_ERR_ARGUMENT, "guidance: the cone valences admit no order (excess %lld)",
+                                  (long long)sum);
+                break;
+            }
+            i = pref[j];
+        }
+        used[i] = 1;
+        sum += valence[i] - 4;
+        order[out++] = i;
+    }
+    free(pref);
+    free(used);
+    free(r);
+    return st;
+}

@@ -1,0 +1,338 @@
+/* seamquad: tests of the geometric guidance (seed 9.2; sq_guide.h): the
+ * disk layouts of the cut surface and of Q, the cone matching, the cone
+ * order by distance from the disk centre, the metapolygon layout, and
+ * Algorithm 1 as a glue chooser of the domain construction (property test:
+ * random cone sets and positions give valid domains whose irregular faces
+ * come in the chosen order). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "sq_test_mesh.h"
+#include "sq_test_random.h"
+
+#include "sq_cut_graph.h"
+#include "sq_domain.h"
+#include "sq_guide.h"
+#include "sq_metapolygon.h"
+#include "sq_valence_order.h"
+
+#define PI 3.14159265358979323846
+
+static double urand(void) { return (double)(rng() >> 11) / 9007199254740992.0; }
+
+/* the cut surface of mpz/eight: boundary corners in order on the circle,
+ * every vertex off the cut strictly inside, vertices on the cut NaN */
+static void test_surface_disk(void **state)
+{
+    (void)state;
+    sq_mesh m;
+    sq_test_load_mesh(&m, "mpz/eight.obj");
+    int32_t *val = sq_test_load_valence("mpz/eight_Th_hat", m.nv);
+    uint8_t *cone = calloc(m.nv, 1);
+    for (uint32_t v = 0; v < m.nv; v++) cone[v] = val[v] != 4;
+    sq_cut_graph G;
+    sq_cut_graph_init(&G);
+    sq_cut_options opt;
+    sq_cut_options_default(&opt);
+    sq_error err = {0};
+    assert_int_equal(sq_cut_graph_build(&m, cone, &opt, &G, NULL, &err), SQ_OK);
+    const uint32_t k = G.pattern.k;
+    double *xy = malloc(2 * (size_t)m.nv * sizeof *xy), *ang = malloc(k * sizeof *ang);
+    assert_int_equal(sq_guide_surface_disk(&m, &G, xy, ang, &err), SQ_OK);
+    assert_true(ang[0] == 0);
+    for (uint32_t i = 1; i < k; i++) assert_true(ang[i] > ang[i - 1] && ang[i] < 2 * PI);
+    uint8_t *on_cut = calloc(m.nv, 1);
+    for (uint32_t h = 0; h < m.nh; h++)
+        if (G.he_cut[h]) on_cut[m.he_vert[h]] = 1;
+    uint32_t inside = 0;
+    for (uint32_t v = 0; v < m.nv; v++) {
+        if (on_cut[v]) {
+            assert_true(isnan(xy[2 * v]) && isnan(xy[2 * v + 1]));
+            continue;
+        }
+        double r = hypot(xy[2 * v], xy[2 * v + 1]);
+        if (!(r < 1)) fail_msg("vertex %u at radius %g", v, r);
+        inside++;
+    }
+    assert_true(inside > m.nv / 2);
+    /* every cone of eight is off the cut and gets a position */
+    for (uint32_t v = 0; v < m.nv; v++)
+        if (cone[v]) assert_false(isnan(xy[2 * v]));
+    free(on_cut);
+    free(xy);
+    free(ang);
+    free(cone);
+    free(val);
+    sq_cut_graph_free(&G);
+    sq_mesh_free(&m);
+}
+
+/* Q of random genus-2 and genus-3 cone sets, corners at given angles:
+ * corners exactly there, the boundary on the circle, every quad
+ * counterclockwise (Tutte of a convex boundary) */
+static void test_domain_disk(void **state)
+{
+    (void)state;
+    rng_state = 20261125;
+    for (uint32_t c = 0; c < 20; c++) {
+        uint32_t g = 2 + c % 2;
+        int32_t v[256];
+        uint32_t n = random_cones(g, v, 256);
+        sq_domain D;
+        sq_error err = {0};
+        if (sq_domain_build(g, v, n, NULL, &D, &err)) fail_msg("domain: %s", err.msg);
+        const uint32_t k = D.k;
+        double *ang = malloc(k * sizeof *ang);
+        /* decreasing (the sides run clockwise), uneven spacing */
+        double a = 2 * PI * urand();
+        for (uint32_t i = 0; i < k; i++) {
+            ang[i] = a;
+            a -= (0.5 + urand()) * 2 * PI / (1.5 * k);
+        }
+        const sq_metapolygon *Q = &D.quads;
+        double *xy = malloc(2 * (size_t)Q->nv * sizeof *xy);
+        assert_int_equal(sq_guide_domain_disk(&D, ang, xy, &err), SQ_OK);
+        for (uint32_t i = 0; i < k; i++) {
+            uint32_t w = D.corner_vert[i];
+            assert_true(fabs(xy[2 * w] - cos(ang[i])) < 1e-12 && fabs(xy[2 * w + 1] - sin(ang[i])) < 1e-12);
+        }
+        for (uint32_t h = 0; h < Q->nh; h++)
+            if (Q->he_face[h] == SQ_NONE) {
+                uint32_t w = Q->he_vert[h];
+                assert_true(fabs(hypot(xy[2 * w], xy[2 * w + 1]) - 1) < 1e-12);
+            }
+        for (uint32_t f = 0; f < Q->nf; f++) {
+            double area = 0;
+            uint32_t h = Q->f_he[f];
+            do {
+                const double *p = xy + 2 * Q->he_vert[h], *q = xy + 2 * Q->he_vert[Q->he_next[h]];
+                area += p[0] * q[1] - p[1] * q[0];
+                h = Q->he_next[h];
+            } while (h != Q->f_he[f]);
+            if (!(area > 0)) fail_msg("case %u: quad %u has signed area %g", c, f, area);
+        }
+        free(xy);
+        free(ang);
+        sq_domain_free(&D);
+    }
+}
+
+static double d2(const double *p, const double *q) { return (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]); }
+
+/* a valid assignment, labels kept, no exchange of two partners lowers the
+ * total; points that are a permutation of each other are recovered */
+static void test_match(void **state)
+{
+    (void)state;
+    rng_state = 7;
+    for (uint32_t c = 0; c < 300; c++) {
+        uint32_t n = 1 + rnd(12);
+        double a[24], b[24];
+        int32_t av[12], bv[12];
+        uint32_t perm[12], m[12];
+        for (uint32_t i = 0; i < n; i++) perm[i] = i;
+        for (uint32_t i = n; i > 1; i--) {
+            uint32_t j = rnd(i), t = perm[i - 1];
+            perm[i - 1] = perm[j], perm[j] = t;
+        }
+        int exact = c % 3 == 0;
+        for (uint32_t i = 0; i < n; i++) {
+            a[2 * i] = urand(), a[2 * i + 1] = urand();
+            av[i] = 3 + (int32_t)rnd(3);
+        }
+        for (uint32_t i = 0; i < n; i++) {
+            uint32_t j = perm[i];
+            bv[j] = av[i];
+            b[2 * j] = exact ? a[2 * i] : urand(), b[2 * j + 1] = exact ? a[2 * i + 1] : urand();
+        }
+        sq_error err = {0};
+        assert_int_equal(sq_guide_match(n, a, av, b, bv, m, &err), SQ_OK);
+        uint8_t used[12] = {0};
+        for (uint32_t i = 0; i < n; i++) {
+            assert_true(m[i] < n && !used[m[i]]);
+            used[m[i]] = 1;
+            assert_int_equal(av[i], bv[m[i]]);
+            if (exact) assert_int_equal(m[i], perm[i]);
+        }
+        for (uint32_t i = 0; i < n; i++)
+            for (uint32_t j = i + 1; j < n; j++)
+                if (av[i] == av[j])
+                    assert_false(d2(a + 2 * i, b + 2 * m[j]) + d2(a + 2 * j, b + 2 * m[i]) <
+                                 d2(a + 2 * i, b + 2 * m[i]) + d2(a + 2 * j, b + 2 * m[j]) - 1e-15);
+    }
+    /* different label multisets */
+    double a[4] = {0, 0, 1, 1}, b[4] = {0, 0, 1, 1};
+    int32_t av[2] = {3, 5}, bv[2] = {3, 3};
+    uint32_t m[2];
+    sq_error err = {0};
+    assert_int_equal(sq_guide_match(2, a, av, b, bv, m, &err), SQ_ERR_ARGUMENT);
+}
+
+/* the construction order: a permutation, admissible (seed 5.1), equal to
+ * the order by distance when that is admissible, and valences <= 4 never
+ * overtake each other */
+static void test_cone_order(void **state)
+{
+    (void)state;
+    rng_state = 99;
+    uint32_t kept = 0;
+    for (uint32_t c = 0; c < 400; c++) {
+        uint32_t g = 2 + rnd(6);
+        int32_t v[512];
+        uint32_t n = random_cones(g, v, 500);
+        /* odd cases: more cancelling 3/5 pairs, the 3s near the centre, so
+         * that the distance order breaks the prefix condition */
+        for (uint32_t p = 0; c % 2 && p < 3; p++) v[n++] = 3, v[n++] = 5;
+        double xy[1024], r[512];
+        for (uint32_t i = 0; i < n; i++) {
+            double rad = c % 2 && v[i] < 4 ? 0.2 * urand() : sqrt(urand()), t = 2 * PI * urand();
+            xy[2 * i] = rad * cos(t), xy[2 * i + 1] = rad * sin(t);
+            r[i] = rad * rad;
+        }
+        uint32_t ord[512];
+        sq_error err = {0};
+        assert_int_equal(sq_guide_cone_order(n, v, xy, ord, &err), SQ_OK);
+        uint8_t used[512] = {0};
+        uint32_t seq[512];
+        for (uint32_t i = 0; i < n; i++) {
+            assert_true(ord[i] < n && !used[ord[i]]);
+            used[ord[i]] = 1;
+            seq[i] = (uint32_t)v[ord[i]];
+        }
+        assert_int_equal(sq_valence_check_sequence(seq, n, NULL, &err), SQ_OK);
+        double last = -1;
+        for (uint32_t i = 0; i < n; i++)
+            if (v[ord[i]] <= 4) {
+                assert_true(r[ord[i]] >= last);
+                last = r[ord[i]];
+            }
+        /* the plain distance order, where admissible, is kept */
+        uint32_t byd[512];
+        for (uint32_t i = 0; i < n; i++) {
+            uint32_t j = i;
+            while (j > 0 && r[byd[j - 1]] > r[i]) byd[j] = byd[j - 1], j--;
+            byd[j] = i;
+        }
+        uint32_t seqd[512];
+        for (uint32_t i = 0; i < n; i++) seqd[i] = (uint32_t)v[byd[i]];
+        if (sq_valence_check_sequence(seqd, n, NULL, NULL) == SQ_OK) {
+            kept++;
+            for (uint32_t i = 0; i < n; i++) assert_int_equal(ord[i], byd[i]);
+        }
+    }
+    print_message("cone order: 400 random sets, %u admissible by distance, %u reordered\n", kept, 400 - kept);
+    assert_true(kept < 400 && kept > 0);
+    /* total excess -4 (genus 0): no order */
+    int32_t bad[2] = {2, 2};
+    double xy[4] = {0, 0, 0.5, 0};
+    uint32_t ord[2];
+    assert_int_equal(sq_guide_cone_order(2, bad, xy, ord, NULL), SQ_ERR_ARGUMENT);
+}
+
+/* one irregular face alone: its barycentre lands on the pin and it keeps
+ * the shape of its regular polygon */
+static void test_layout_single_face(void **state)
+{
+    (void)state;
+    for (uint32_t l = 3; l <= 8; l++) {
+        if (l == 4) continue;
+        sq_metapolygon P;
+        sq_metapolygon_init(&P);
+        uint32_t seq[1] = {l};
+        assert_int_equal(sq_metapolygon_build(&P, seq, 1, NULL, NULL, NULL), SQ_OK);
+        double c[2] = {0.3, -0.2}, *xy = malloc(2 * (size_t)P.nv * sizeof *xy);
+        assert_int_equal(sq_guide_metapolygon_layout(&P, c, 1, NULL, xy, NULL), SQ_OK);
+        for (uint32_t f = 0; f < P.nf; f++) {
+            if (P.f_valence[f] == 4) continue;
+            double bx = 0, by = 0, len0 = -1;
+            uint32_t h = P.f_he[f];
+            for (uint32_t j = 0; j < P.f_valence[f]; j++, h = P.he_next[h]) {
+                const double *p = xy + 2 * P.he_vert[h], *q = xy + 2 * P.he_vert[P.he_next[h]];
+                bx += p[0] / P.f_valence[f], by += p[1] / P.f_valence[f];
+                double len = sqrt(d2(p, q));
+                if (len0 < 0) len0 = len;
+                if (P.nf == 1) assert_true(fabs(len - len0) < 1e-9 * len0);
+            }
+            if (P.nf == 1) assert_true(fabs(bx - c[0]) < 1e-9 && fabs(by - c[1]) < 1e-9);
+        }
+        free(xy);
+        sq_metapolygon_free(&P);
+    }
+}
+
+/* Algorithm 1 in the domain construction: random cone sets and random
+ * positions in the disk; the domain is valid (sq_domain_verify) and its
+ * irregular faces come in the chosen order, so the centre of the j-th one
+ * stands for the j-th cone */
+static void test_algorithm1_domains(void **state)
+{
+    (void)state;
+    rng_state = 31337;
+    const uint32_t cases = long_mode() ? 400 : 40;
+    for (uint32_t c = 0; c < cases; c++) {
+        uint32_t g = 2 + c % 4;
+        int32_t v[512];
+        uint32_t n = random_cones(g, v, 512);
+        double xy[1024], cxy[1024];
+        for (uint32_t i = 0; i < n; i++) {
+            double rad = sqrt(urand()), t = 2 * PI * urand();
+            xy[2 * i] = rad * cos(t), xy[2 * i + 1] = rad * sin(t);
+        }
+        uint32_t ord[512];
+        sq_error err = {0};
+        assert_int_equal(sq_guide_cone_order(n, v, xy, ord, &err), SQ_OK);
+        int32_t vo[512];
+        for (uint32_t i = 0; i < n; i++) {
+            vo[i] = v[ord[i]];
+            cxy[2 * i] = xy[2 * ord[i]], cxy[2 * i + 1] = xy[2 * ord[i] + 1];
+        }
+        uint32_t chosen[512];
+        sq_guide_glue gg = {cxy, chosen, NULL, 0, 0, 0};
+        sq_build_options bopt = {NULL, sq_guide_glue_chooser, &gg};
+        sq_domain_options dopt = {NULL, SQ_NONE, &bopt, 1};
+        sq_domain D;
+        if (sq_domain_build(g, vo, n, &dopt, &D, &err)) fail_msg("case %u genus %u: %s", c, g, err.msg);
+        if (sq_domain_verify(&D, vo, n, &err)) fail_msg("case %u: verify: %s", c, err.msg);
+        uint32_t j = 0;
+        for (uint32_t f = 0; f < D.meta.nf; f++)
+            if (D.meta.f_valence[f] != 4) {
+                assert_true(j < D.ncones);
+                assert_int_equal(D.meta.f_valence[f], D.order[j]);
+                j++;
+            }
+        assert_int_equal(j, D.ncones);
+        for (uint32_t i = 0; i < D.ncones; i++) assert_int_equal((int32_t)D.order[i], vo[i]);
+        sq_guide_glue_free(&gg);
+        /* the recorded choices rebuild the same metapolygon */
+        chosen[0] = SQ_NONE;
+        sq_build_options again = {chosen, NULL, NULL};
+        sq_domain_options dopt2 = {NULL, D.offset, &again, 1};
+        sq_domain D2;
+        if (sq_domain_build(g, vo, n, &dopt2, &D2, &err)) fail_msg("case %u: rebuild: %s", c, err.msg);
+        assert_int_equal(D2.meta.nf, D.meta.nf);
+        assert_int_equal(D2.meta.nh, D.meta.nh);
+        assert_memory_equal(D2.meta.he_vert, D.meta.he_vert, D.meta.nh * sizeof(uint32_t));
+        assert_memory_equal(D2.meta.he_next, D.meta.he_next, D.meta.nh * sizeof(uint32_t));
+        assert_int_equal(D2.quads_added, D.quads_added);
+        sq_domain_free(&D2);
+        sq_domain_free(&D);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_surface_disk),       cmocka_unit_test(test_domain_disk),
+        cmocka_unit_test(test_match),              cmocka_unit_test(test_cone_order),
+        cmocka_unit_test(test_layout_single_face), cmocka_unit_test(test_algorithm1_domains),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
