@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "sq_guide.h"
+#include "sq_mean_value.h"
 #include "sq_sparse.h"
 
 #define SQ_GUIDE_PI 3.14159265358979323846
@@ -14,18 +15,6 @@ static double vdist(const double *p, const double *q)
 {
     double x = p[0] - q[0], y = p[1] - q[1], z = p[2] - q[2];
     return sqrt(x * x + y * y + z * z);
-}
-
-/* tan(angle at p between p->a and p->b / 2) */
-static double half_tan(const double *p, const double *a, const double *b)
-{
-    double u[3] = {a[0] - p[0], a[1] - p[1], a[2] - p[2]}, w[3] = {b[0] - p[0], b[1] - p[1], b[2] - p[2]};
-    double lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    double lw = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-    double cs = (u[0] * w[0] + u[1] * w[1] + u[2] * w[2]) / (lu * lw);
-    if (!(cs < 1)) cs = 1;
-    if (!(cs > -1)) cs = -1;
-    return tan(0.5 * acos(cs));
 }
 
 sq_status sq_guide_surface_disk(const sq_mesh *m, const sq_cut_graph *G, double *v_xy,
@@ -87,8 +76,7 @@ sq_status sq_guide_surface_disk(const sq_mesh *m, const sq_cut_graph *G, double 
         uint32_t a = m->he_vert[m->he_next[m->he_next[h]]];
         uint32_t b = m->he_vert[m->he_next[m->he_next[t]]];
         const double *pv = m->pos + 3 * v, *pw = m->pos + 3 * w;
-        double wt = (half_tan(pv, pw, m->pos + 3 * a) + half_tan(pv, pw, m->pos + 3 * b)) / vdist(pv, pw);
-        if (!(wt > 0) || !isfinite(wt)) wt = 1e-12;
+        double wt = sq_mean_value_weight(pv, pw, m->pos + 3 * a, m->pos + 3 * b);
         ri[nnz] = idx[v], cj[nnz] = idx[v], val[nnz++] = wt;
         if (idx[w] != SQ_NONE) {
             ri[nnz] = idx[v], cj[nnz] = idx[w], val[nnz++] = -wt;

@@ -13,6 +13,7 @@
 #include "sq_cut_graph.h"
 #include "sq_domain.h"
 #include "sq_guide.h"
+#include "sq_mean_value.h"
 #include "sq_omega.h"
 #include "sq_omega_cells.h"
 #include "sq_predicates.h"
@@ -1175,20 +1176,6 @@ static sq_status replay_chords(ctx *c)
 
 /* ---- step 7: Tutte map of every cell onto its rectangle --------------- */
 
-/* mean value weight of edge (v -> w) given the halfedge h from v to w:
- * (tan(alpha/2) + tan(beta/2)) / |v - w| with the angles at v */
-static double half_tan(const sq_tsurf *S, uint32_t v, uint32_t a, uint32_t b)
-{
-    const double *p = S->pos + 3 * v, *x = S->pos + 3 * a, *y = S->pos + 3 * b;
-    double u[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]}, w[3] = {y[0] - p[0], y[1] - p[1], y[2] - p[2]};
-    double lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), lw = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-    double cs = (u[0] * w[0] + u[1] * w[1] + u[2] * w[2]) / (lu * lw);
-    if (cs > 1) cs = 1;
-    if (cs < -1) cs = -1;
-    double ang = acos(cs);
-    return tan(0.5 * ang);
-}
-
 static sq_status tutte(ctx *c, uint32_t *v_uv)
 {
     sq_tsurf *S = &c->S;
@@ -1217,8 +1204,7 @@ static sq_status tutte(ctx *c, uint32_t *v_uv)
             /* faces on both sides of edge v-w: face(h) has third vertex
              * tri[prev(h)]; the twin's face has tri[prev(twin h)] */
             uint32_t a = S->vert[sq_ts_prev(S, h)], b = S->vert[sq_ts_prev(S, S->twin[h])];
-            double wt = (half_tan(S, v, w, a) + half_tan(S, v, w, b)) / sq_ts_dist(S, v, w);
-            if (!(wt > 0) || !isfinite(wt)) wt = 1e-12;
+            double wt = sq_mean_value_weight(S->pos + 3 * v, S->pos + 3 * w, S->pos + 3 * a, S->pos + 3 * b);
             diag += wt;
             if (nnz + 2 > cap) {
                 cap *= 2;

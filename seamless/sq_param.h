@@ -6,7 +6,10 @@
  * Pipeline (sq_param_build):
  *  1. cut graph of M (seed 7, 9.1; sq_cut_graph.h): a disk M^c whose side
  *     pattern is handed to the domain construction;
- *  2. domain Q for that pattern and the cone valences (sq_domain.h);
+ *  2. domain Q for that pattern and the cone valences (sq_domain.h); with
+ *     guidance (seed 9.2, genus >= 2; sq_guide.h) its cones are ordered and
+ *     glued after a disk layout of M^c, and its corners matched to M^c's at
+ *     similar angles, so that each cone of Q stands for one surface cone;
  *  3. cone tree in Q and the flat domain Omega (sq_omega.h);
  *  4. the same tree on M^c, path by path in the tree's rotation order, with
  *     Steiner vertices by edge splits where paths would block each other

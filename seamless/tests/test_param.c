@@ -48,6 +48,26 @@ static void unload(model *M)
     free(M->val);
 }
 
+static char *referee(const model *M, const char *obj, int *rc);
+
+/* Writes P to a temporary OBJ and fails unless the referee passes it. */
+static void assert_referee_passes(const model *M, const sq_param *P, const char *name)
+{
+    sq_error err = {0};
+    char obj[] = "/tmp/sq_test_param_XXXXXX";
+    int fd = mkstemp(obj);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(sq_param_write_obj(obj, P, &err), SQ_OK);
+    int rc;
+    char *out = referee(M, obj, &rc);
+    remove(obj);
+    assert_non_null(out);
+    if (rc != 0) fail_msg("%s: referee:\n%s", name, out);
+    assert_non_null(strstr(out, "check_param: PASS"));
+    free(out);
+}
+
 /* Runs the referee; returns its output (caller frees) and exit code. */
 static char *referee(const model *M, const char *obj, int *rc)
 {
@@ -85,18 +105,7 @@ static void test_eight_passes(void **state)
     assert_int_equal(st.genus, 2);
     assert_int_equal(st.ncones, 8);
     assert_int_equal(st.cells, st.chords + 1);
-    char obj[] = "/tmp/sq_test_param_XXXXXX";
-    int fd = mkstemp(obj);
-    assert_true(fd >= 0);
-    close(fd);
-    assert_int_equal(sq_param_write_obj(obj, &P, &err), SQ_OK);
-    int rc;
-    char *out = referee(&M, obj, &rc);
-    remove(obj);
-    assert_non_null(out);
-    if (rc != 0) fail_msg("eight: referee:\n%s", out);
-    assert_non_null(strstr(out, "check_param: PASS"));
-    free(out);
+    assert_referee_passes(&M, &P, "eight");
     sq_param_free(&P);
     unload(&M);
 }
@@ -121,17 +130,7 @@ static void test_cup_guided(void **state)
     if (s) fail_msg("cup seed 2: %s", err.msg);
     assert_true(st.guided && st.attempts == 1 && st.seed_used == 2);
     assert_int_equal(sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err), SQ_OK);
-    char obj[] = "/tmp/sq_test_param_XXXXXX";
-    int fd = mkstemp(obj);
-    assert_true(fd >= 0);
-    close(fd);
-    assert_int_equal(sq_param_write_obj(obj, &P, &err), SQ_OK);
-    int rc;
-    char *out = referee(&M, obj, &rc);
-    remove(obj);
-    assert_non_null(out);
-    if (rc != 0) fail_msg("cup: referee:\n%s", out);
-    free(out);
+    assert_referee_passes(&M, &P, "cup");
     sq_param_free(&P);
     /* unguided, same cut: not injective in doubles */
     opt.guidance = SQ_GUIDE_OFF;
