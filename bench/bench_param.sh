@@ -7,7 +7,8 @@
 # in total (median of N runs), peak RSS,
 # faces in and out, quads of the domain, beside the seed's Table 1. Default
 # options (up to 8 attempts with the next cut-graph seed, guidance auto);
-# a failed model shows the wall time and memory until its clean failure.
+# a failed model shows the wall time and memory until its clean failure, and
+# the domain of its last attempt (--json "last_attempt").
 # Builds in Release mode into build-bench/.
 # usage: bench/bench_param.sh [N]
 set -euo pipefail
@@ -73,7 +74,11 @@ for path, cones in models:
         msg = j.get("error", {}).get("message", "")
         why = ("not injective in doubles" if "not injective" in msg else
                "Steiner budget" if "Steiner" in msg else msg[:40].replace("|", "/"))
-        cells = [path, "", "", "FAIL: " + why, "8"] + [""] * (4 + len(steps)) + ["%.2f" % wall, "%.0f" % rss, ref]
+        la = j.get("last_attempt", {})
+        quads = "%d + %d" % (la["quads_before_padding"], la["quads_added_by_padding"]) if la else ""
+        cells = ([path, str(la.get("genus", "")), str(la.get("cones", "")), "FAIL: " + why,
+                  str(la.get("attempts", ""))] + [""] * 3 + [quads] + [""] * len(steps)
+                 + ["%.2f" % wall, "%.0f" % rss, ref])
         print("| " + " | ".join(cells) + " |")
         continue
     med = lambda key: statistics.median(r[0]["time_s"][key] for r in runs)

@@ -454,6 +454,14 @@ fail:
     if (json) {
         printf("{\n  \"ok\": false,\n  ");
         sq_json_error(err.code, stage, err.msg);
+        if (!strcmp(stage, "param"))
+            /* how far the last attempt got (zeros where it did not) */
+            printf(",\n  \"last_attempt\": {\"attempts\": %u, \"seed\": %llu, \"guided\": %s, "
+                   "\"genus\": %u, \"cones\": %u, \"quads_before_padding\": %llu, "
+                   "\"quads_added_by_padding\": %llu, \"chords\": %u, \"cells\": %u}",
+                   stats.attempts, (unsigned long long)stats.seed_used, stats.guided ? "true" : "false",
+                   stats.genus, stats.ncones, (unsigned long long)stats.quads_unpadded,
+                   (unsigned long long)stats.quads_added, stats.chords, stats.cells);
         printf("\n}\n");
     }
     /* the command line was checked above: an argument error from the

@@ -221,6 +221,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     uint32_t nc = 0;
     for (uint32_t v = 0; v < m->nv; v++)
         if (valence[v] != 4) cone[v] = 1, val[nc++] = valence[v];
+    if (st_out) st_out->genus = genus, st_out->ncones = nc;
     double t0 = now_s();
     progress(c, "cut graph", 0.0);
     sq_cut_options copt;
@@ -267,6 +268,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     }
     st = sq_domain_build(genus, val, nc, &dopt, c->D, err);
     if (st) goto done;
+    if (st_out) st_out->quads_unpadded = c->D->quads_unpadded, st_out->quads_added = c->D->quads_added;
     c->k = c->D->k;
     st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, err);
     if (st == SQ_OK && c->step_vertex) st = align_corners(c, val, nc, &dopt);
