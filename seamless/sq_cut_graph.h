@@ -161,9 +161,11 @@ sq_status sq_cut_graph_check(const sq_mesh *m, const uint8_t *cone, const sq_cut
  * domain Q of sq_domain_build (seed 6.5, seed 6.2, seed 7 "Low Genus
  * Special Cases"; docs/cut_graph.md "Genus 0 and 1"):
  *  - genus 0: one shortest path of at least 2 edges between two non-cone
- *    vertices through non-cone vertices (Dijkstra, Euclidean lengths); its
- *    ends are degree-1 branch points; k = 2, partner {1, 0} (Q: the sphere
- *    cut along one edge);
+ *    vertices through non-cone vertices (Dijkstra, Euclidean lengths), from
+ *    the first suitable vertex in index order (opt->seed 1) or from a
+ *    vertex spread over the index range by the seed; its ends are degree-1
+ *    branch points; k = 2, partner {1, 0} (Q: the sphere cut along one
+ *    edge);
  *  - genus 1 with cones (some cone[v] != 0): the theta graph, a shortest
  *    cone-free non-separating loop L (sq_cut_loops_find) and a shortest
  *    cone-free path P from the + side of L to the - side with ends x != y

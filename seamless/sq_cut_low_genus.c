@@ -58,8 +58,8 @@ static sq_status finish(const sq_mesh *m, const uint8_t *cone, sq_cut_graph *G,
 
 /* ---- genus 0: one path ------------------------------------------------- */
 
-static sq_status build_genus0(const sq_mesh *m, const uint8_t *cone, sq_cut_graph *out,
-                              sq_cut_stats *stats, sq_error *err)
+static sq_status build_genus0(const sq_mesh *m, const uint8_t *cone, uint64_t seed,
+                              sq_cut_graph *out, sq_cut_stats *stats, sq_error *err)
 {
     sq_status st = SQ_OK;
     double *dist = malloc((size_t)m->nv * sizeof *dist);
@@ -74,15 +74,19 @@ static sq_status build_genus0(const sq_mesh *m, const uint8_t *cone, sq_cut_grap
         goto done;
     }
     out->genus = 0;
-    /* Start at the first non-cone vertex (in index order) from which some
-     * non-cone vertex outside its 1-ring is reachable through non-cone
-     * vertices; the end is the nearest such vertex, so the shortest path
-     * has >= 2 edges. A run that fails stays inside the closed 1-ring of
+    /* Start at the first non-cone vertex (in index order from `first`,
+     * below) from which some non-cone vertex outside its 1-ring is
+     * reachable through non-cone vertices; the end is the nearest such
+     * vertex, so the shortest path has >= 2 edges. A run that fails stays inside the closed 1-ring of
      * its start, so trying every start is cheap; another start in the same
      * component may still succeed (u's neighbours see u's other
      * neighbours as outside their own 1-ring). */
     uint32_t u = SQ_NONE, w = SQ_NONE, walled = SQ_NONE, run = 0;
-    for (uint32_t s = 0; s < m->nv && w == SQ_NONE; ++s) {
+    /* seed 1 scans from vertex 0; other seeds from a vertex spread over the
+     * index range (a prime stride), so that retries get other slits */
+    const uint32_t first = (uint32_t)(((seed ? seed - 1 : 0) % m->nv) * 7919u % m->nv);
+    for (uint32_t i = 0; i < m->nv && w == SQ_NONE; ++i) {
+        const uint32_t s = (first + i) % m->nv;
         if (is_cone(cone, s))
             continue;
         ++run;
@@ -386,7 +390,7 @@ sq_status sq_cut_graph_build_low_genus(const sq_mesh *m, const uint8_t *cone,
         any_cone = cone[v] != 0;
     if (genus >= 2 || (genus == 1 && !any_cone))
         return sq_cut_graph_build(m, cone, opt, out, stats, err);
-    sq_status st = genus == 0 ? build_genus0(m, cone, out, stats, err)
+    sq_status st = genus == 0 ? build_genus0(m, cone, opt ? opt->seed : 1, out, stats, err)
                               : build_theta(m, cone, opt, out, stats, err);
     if (st != SQ_OK)
         sq_cut_graph_free(out);

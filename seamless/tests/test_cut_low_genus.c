@@ -258,6 +258,40 @@ static void run_model(const char *rel, const char *cones, uint32_t g)
     unload(&M);
 }
 
+/* genus 0: the seed moves the slit (retries of sq_param_build get other
+ * cuts); every one is a valid cut graph, seed 1 keeps the unseeded one */
+static void test_genus0_seeds(void **s)
+{
+    (void)s;
+    model M;
+    load(&M, "mpz/fandisk.obj", "mpz/fandisk_Th_hat");
+    sq_cut_graph G[6];
+    sq_error err;
+    for (uint32_t i = 0; i < 6; ++i) {
+        sq_cut_graph_init(&G[i]);
+        sq_cut_options opt;
+        sq_cut_options_default(&opt);
+        opt.seed = i + 1;
+        if (sq_cut_graph_build_low_genus(&M.m, M.cone, &opt, &G[i], NULL, &err) != SQ_OK)
+            fail_msg("seed %u: %s", i + 1, err.msg);
+        check_graph(&M, &G[i], 0, 1, 2);
+    }
+    sq_cut_graph H;
+    sq_cut_graph_init(&H);
+    assert_int_equal(sq_cut_graph_build_low_genus(&M.m, M.cone, NULL, &H, NULL, &err), SQ_OK);
+    assert_memory_equal(H.he_cut, G[0].he_cut, M.m.nh);
+    uint32_t distinct = 0;
+    for (uint32_t i = 0; i < 6; ++i) {
+        int fresh = 1;
+        for (uint32_t j = 0; j < i && fresh; ++j) fresh = memcmp(G[i].he_cut, G[j].he_cut, M.m.nh) != 0;
+        distinct += fresh;
+    }
+    assert_true(distinct >= 5);
+    for (uint32_t i = 0; i < 6; ++i) sq_cut_graph_free(&G[i]);
+    sq_cut_graph_free(&H);
+    unload(&M);
+}
+
 static void test_fandisk(void **s) { (void)s; run_model("mpz/fandisk.obj", "mpz/fandisk_Th_hat", 0); }
 static void test_homer(void **s) { (void)s; run_model("mpz/homer.obj", "mpz/homer_Th_hat", 0); }
 static void test_bunny(void **s) { (void)s; run_model("libigl/bunny.off", NULL, 0); }
@@ -492,6 +526,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_reversed_and_offset),
         cmocka_unit_test(test_fandisk),
+        cmocka_unit_test(test_genus0_seeds),
         cmocka_unit_test(test_homer),
         cmocka_unit_test(test_bunny),
         cmocka_unit_test(test_knight),
