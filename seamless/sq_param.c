@@ -473,6 +473,7 @@ static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domai
     sq_build_options again;
     memset(&again, 0, sizeof again);
     again.glue_he = c->step_glue;
+    const sq_build_options *first = dopt->build;
     dopt->build = &again;
     for (uint32_t t = 0; t < k; t++) {
         uint32_t o = ord[t];
@@ -489,6 +490,7 @@ static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domai
         }
         sq_domain_free(D2);
     }
+    dopt->build = first; /* `again` lives on this stack frame only */
 done:
     if (D2) free(D2);
     free(qv);
@@ -499,10 +501,13 @@ done:
     return st;
 }
 
-/* Lays out the cut surface and Q in the unit disk with corresponding corners
- * at the same angles and matches Q's cones to the surface's by position
- * (sq_guide.h). Q corner i is the start of counterclockwise surface side
- * (k - (i + r) % k) % k, as in cut_surface. */
+/* c->q_target: the surface cone each cone of Q stands for. After Algorithm
+ * 1 (genus >= 2) that is the cone of the step that made it. Otherwise
+ * (SQ_GUIDE_ON below genus 2) the cut surface and Q are laid out in the
+ * unit disk with corresponding corners at the same angles and Q's cones
+ * matched to the surface's by position (sq_guide.h); Q corner i is the
+ * start of counterclockwise surface side (k - (i + r) % k) % k, as in
+ * cut_surface. */
 static sq_status guide(ctx *c)
 {
     const sq_mesh *m = c->m;
