@@ -269,6 +269,18 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
         if (out[i].path) printf("wrote          %s\n", out[i].path);
 }
 
+/* A decimal integer in [lo, hi], nothing else (no sign, no trailing text). */
+static int parse_u64(const char *arg, unsigned long long lo, unsigned long long hi,
+                     unsigned long long *out)
+{
+    char *e;
+    errno = 0;
+    unsigned long long v = strtoull(arg, &e, 10);
+    if (e == arg || *e || errno || arg[0] == '-' || v < lo || v > hi) return 0;
+    *out = v;
+    return 1;
+}
+
 int sq_cmd_param(int argc, char **argv)
 {
     const char *mesh_path = NULL, *cones_path = NULL;
@@ -296,23 +308,15 @@ int sq_cmd_param(int argc, char **argv)
         } else if (!strcmp(a, "--domain-svg") && has) {
             out[OUT_DOMAIN_SVG].path = argv[++i];
         } else if (!strcmp(a, "--seed") && has) {
-            char *e;
-            const char *arg = argv[++i];
-            errno = 0;
-            seed = strtoull(arg, &e, 10);
-            if (e == arg || *e || errno || arg[0] == '-') {
+            if (!parse_u64(argv[++i], 0, UINT64_MAX, &seed)) {
                 fprintf(stderr, "seamquad param: --seed needs a non-negative integer, got '%s'\n",
-                        arg);
+                        argv[i]);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--attempts") && has) {
-            char *e;
-            const char *arg = argv[++i];
-            errno = 0;
-            attempts = strtoull(arg, &e, 10);
-            if (e == arg || *e || errno || arg[0] == '-' || attempts < 1 || attempts > 1000) {
+            if (!parse_u64(argv[++i], 1, 1000, &attempts)) {
                 fprintf(stderr, "seamquad param: --attempts needs an integer from 1 to 1000, got "
-                                "'%s'\n", arg);
+                                "'%s'\n", argv[i]);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--guide") && has) {

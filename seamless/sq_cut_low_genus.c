@@ -77,10 +77,10 @@ static sq_status build_genus0(const sq_mesh *m, const uint8_t *cone, uint64_t se
     /* Start at the first non-cone vertex (in index order from `first`,
      * below) from which some non-cone vertex outside its 1-ring is
      * reachable through non-cone vertices; the end is the nearest such
-     * vertex, so the shortest path has >= 2 edges. A run that fails stays inside the closed 1-ring of
-     * its start, so trying every start is cheap; another start in the same
-     * component may still succeed (u's neighbours see u's other
-     * neighbours as outside their own 1-ring). */
+     * vertex, so the shortest path has >= 2 edges. A run that fails stays
+     * inside the closed 1-ring of its start, so trying every start is cheap;
+     * another start in the same component may still succeed (u's neighbours
+     * see u's other neighbours as outside their own 1-ring). */
     uint32_t u = SQ_NONE, w = SQ_NONE, walled = SQ_NONE, run = 0;
     /* seed 1 scans from vertex 0; other seeds from a vertex spread over the
      * index range (a prime stride), so that retries get other slits */

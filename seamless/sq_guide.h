@@ -31,6 +31,8 @@
 extern "C" {
 #endif
 
+#define SQ_GUIDE_PI 3.14159265358979323846
+
 /* Layout of the cut surface of m along G in the unit disk (seed 9.2: "a map
  * ... of the cut surface onto the unit disk"). The boundary walk of G (disk
  * on the left) runs counterclockwise around the circle, by arc length,
@@ -60,8 +62,9 @@ sq_status sq_guide_match(uint32_t n, const double *a_xy, const int32_t *a_val, c
 /* Seed 9.2: the order in which the metapolygon construction takes the n
  * cones (valence[i], disk position xy[2i..2i+1]): by distance from the
  * disk centre, valences > 4 moved forward where the prefix condition of
- * seed 5.1 needs them. order: n indices. SQ_ERR_ARGUMENT when no order is
- * admissible (total excess <= -4). */
+ * seed 5.1 needs them (sq_valence_order_greedy_index). order: n indices.
+ * SQ_ERR_ARGUMENT when no order is admissible (total excess <= -4, or a
+ * valence below 2 or equal to 4). */
 sq_status sq_guide_cone_order(uint32_t n, const int32_t *valence, const double *xy, uint32_t *order,
                               sq_error *err);
 

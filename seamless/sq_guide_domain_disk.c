@@ -7,8 +7,6 @@
 #include "sq_disk_layout.h"
 #include "sq_guide.h"
 
-#define SQ_GUIDE_PI 3.14159265358979323846
-
 sq_status sq_guide_domain_disk(const sq_domain *D, const double *corner_angle, double *q_xy,
                                sq_error *err)
 {

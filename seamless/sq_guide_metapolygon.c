@@ -14,8 +14,7 @@
 
 #include "sq_guide.h"
 #include "sq_sparse.h"
-
-#define SQ_GUIDE_PI 3.14159265358979323846
+#include "sq_valence_order.h"
 
 typedef struct trip {
     uint32_t *r, *c;
@@ -59,14 +58,17 @@ sq_status sq_guide_metapolygon_layout(const sq_metapolygon *P, const double *c, 
     const uint32_t nv = P->nv, nf = P->nf, n = 2 * nv + 2 * nf;
     trip T = {0};
     double *b = calloc((size_t)n + 1, sizeof *b), *x = malloc(((size_t)n + 1) * sizeof *x);
-    uint32_t *fv = NULL;
+    uint32_t *fv = NULL, *ix = NULL, *iy = NULL;
+    double *cf = NULL;
     sq_spd *F = NULL;
     sq_status st = SQ_OK;
     uint32_t maxval = 0;
     for (uint32_t f = 0; f < nf; f++)
         if (P->f_valence[f] > maxval) maxval = P->f_valence[f];
     fv = malloc(((size_t)maxval + 1) * sizeof *fv);
-    if (!b || !x || !fv) goto nomem;
+    ix = malloc(((size_t)maxval + 1) * sizeof *ix), iy = malloc(((size_t)maxval + 1) * sizeof *iy);
+    cf = malloc(((size_t)maxval + 1) * sizeof *cf);
+    if (!b || !x || !fv || !ix || !iy || !cf) goto nomem;
     uint32_t irr = 0;
     for (uint32_t f = 0; f < nf; f++) {
         const uint32_t k = P->f_valence[f];
@@ -88,13 +90,9 @@ sq_status sq_guide_metapolygon_layout(const sq_metapolygon *P, const double *c, 
          * definite before two faces are pinned */
         if (trip_add(&T, ax, ax, 1e-3) || trip_add(&T, ay, ay, 1e-3)) goto nomem;
         b[ax] += 1e-3 * 0.1;
-        if (!pin_vert && k != 4 && irr < npinned) {
-            uint32_t ix[64], iy[64];
-            double cf[64];
-            uint32_t kk = k < 64 ? k : 64;
-            for (uint32_t j = 0; j < kk; j++) ix[j] = 2 * fv[j], iy[j] = 2 * fv[j] + 1, cf[j] = 1.0 / kk;
-            if (add_row(&T, b, ix, cf, (int)kk, c[2 * irr], 10) ||
-                add_row(&T, b, iy, cf, (int)kk, c[2 * irr + 1], 10))
+        if (!pin_vert && k != 4 && irr < npinned) { /* the barycentre at c[irr] */
+            for (uint32_t j = 0; j < k; j++) ix[j] = 2 * fv[j], iy[j] = 2 * fv[j] + 1, cf[j] = 1.0 / k;
+            if (add_row(&T, b, ix, cf, (int)k, c[2 * irr], 10) || add_row(&T, b, iy, cf, (int)k, c[2 * irr + 1], 10))
                 goto nomem;
         }
         if (k != 4) irr++;
@@ -124,6 +122,9 @@ done:
     free(b);
     free(x);
     free(fv);
+    free(ix);
+    free(iy);
+    free(cf);
     return st;
 }
 
@@ -209,45 +210,31 @@ void sq_guide_glue_free(sq_guide_glue *G)
 sq_status sq_guide_cone_order(uint32_t n, const int32_t *valence, const double *xy, uint32_t *order,
                               sq_error *err)
 {
-    uint32_t *pref = malloc(((size_t)n + 1) * sizeof *pref);
-    uint8_t *used = calloc((size_t)n + 1, 1);
+    uint32_t *byd = malloc(((size_t)n + 1) * sizeof *byd), *pref = calloc((size_t)n + 1, sizeof *pref);
+    uint32_t *index = malloc(((size_t)n + 1) * sizeof *index);
     double *r = malloc(((size_t)n + 1) * sizeof *r);
-    if (!pref || !used || !r) {
-        free(pref), free(used), free(r);
-        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    sq_status st = SQ_OK;
+    if (!byd || !pref || !index || !r) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
     }
     /* preferred: by distance from the disk centre (insertion sort: n is the
      * number of cones) */
     for (uint32_t i = 0; i < n; i++) {
         r[i] = xy[2 * i] * xy[2 * i] + xy[2 * i + 1] * xy[2 * i + 1];
         uint32_t j = i;
-        while (j > 0 && r[pref[j - 1]] > r[i]) pref[j] = pref[j - 1], j--;
-        pref[j] = i;
+        while (j > 0 && r[byd[j - 1]] > r[i]) byd[j] = byd[j - 1], j--;
+        byd[j] = i;
     }
-    /* seed 9.2: move valences > 4 forward where the prefix sum of l - 4
-     * would reach -4 */
-    int64_t sum = 0;
-    uint32_t out = 0, next = 0;
-    sq_status st = SQ_OK;
-    while (out < n) {
-        while (next < n && used[pref[next]]) next++;
-        uint32_t i = pref[next];
-        if (sum + valence[i] - 4 <= -4) {
-            uint32_t j = next + 1;
-            while (j < n && (used[pref[j]] || valence[pref[j]] <= 4)) j++;
-            if (j >= n) {
-                st = sq_error_set(err, SQ_ERR_ARGUMENT, "guidance: the cone valences admit no order (excess %lld)",
-                                  (long long)sum);
-                break;
-            }
-            i = pref[j];
-        }
-        used[i] = 1;
-        sum += valence[i] - 4;
-        order[out++] = i;
-    }
+    /* seed 9.2: valences > 4 moved forward where the prefix condition
+     * needs them (sq_valence_order_greedy) */
+    for (uint32_t i = 0; i < n; i++) pref[i] = (uint32_t)valence[byd[i]];
+    st = sq_valence_order_greedy_index(pref, n, index, err);
+    for (uint32_t i = 0; st == SQ_OK && i < n; i++) order[i] = byd[index[i]];
+done:
+    free(byd);
     free(pref);
-    free(used);
+    free(index);
     free(r);
     return st;
 }

@@ -9,8 +9,6 @@
 #include "sq_mean_value.h"
 #include "sq_sparse.h"
 
-#define SQ_GUIDE_PI 3.14159265358979323846
-
 static double vdist(const double *p, const double *q)
 {
     double x = p[0] - q[0], y = p[1] - q[1], z = p[2] - q[2];

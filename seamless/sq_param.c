@@ -56,7 +56,7 @@ static double now_s(void)
 
 typedef struct ctx {
     const sq_mesh *m;
-    const sq_param_options *opt;
+    const sq_param_options *opt; /* never NULL (sq_param_build fills defaults) */
     sq_error *err;
     sq_tsurf S;
     sq_cut_graph G;
@@ -77,8 +77,8 @@ typedef struct ctx {
     const int32_t *S_valence; /* the input's valences (m->nv)              */
     double *step_xy;       /* disk positions of the steps' cones          */
     double *surf_corner_angle; /* k: the cut graph's corners on the circle */
-    uint32_t *step_glue;   /* Algorithm 1's glue edge per step (rebuilds)  */
-    sq_guide_glue glue;
+    sq_guide_glue glue;    /* Algorithm 1's chooser: c = step_xy, chosen */
+                           /* = its glue edge per step (for rebuilds)     */
     uint32_t *step_vertex; /* genus >= 2, guided: the surface cone of each */
                            /* metapolygon step (seed 9.2, Algorithm 1)     */
     uint32_t *q_target;  /* Q->nv: the surface cone matched to a cone of Q */
@@ -161,10 +161,10 @@ static sq_status guided_order(ctx *c, int32_t *val, uint32_t nc)
     uint32_t *cv = malloc(((size_t)nc + 1) * sizeof *cv), *order = malloc(((size_t)nc + 1) * sizeof *order);
     int32_t *v2 = malloc(((size_t)nc + 1) * sizeof *v2);
     c->step_vertex = malloc(((size_t)nc + 1) * sizeof *c->step_vertex);
-    c->step_glue = malloc(((size_t)nc + 1) * sizeof *c->step_glue);
+    c->glue.chosen = malloc(((size_t)nc + 1) * sizeof *c->glue.chosen);
     c->step_xy = malloc((2 * (size_t)nc + 2) * sizeof *c->step_xy);
     sq_status st = SQ_OK;
-    if (!v_xy || !ang || !pos || !cv || !order || !v2 || !c->step_vertex || !c->step_xy || !c->step_glue) {
+    if (!v_xy || !ang || !pos || !cv || !order || !v2 || !c->step_vertex || !c->step_xy || !c->glue.chosen) {
         st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -226,7 +226,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     progress(c, "cut graph", 0.0);
     sq_cut_options copt;
     sq_cut_options_default(&copt);
-    copt.seed = c->opt ? c->opt->seed : 1;
+    copt.seed = c->opt->seed;
     sq_cut_stats cst;
     memset(&cst, 0, sizeof cst);
     if (genus >= 2)
@@ -237,8 +237,10 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
      * edge split) depends on the sampling seed, not on the input: a
      * limitation of this cut graph, retried with the next seed */
     if (st == SQ_ERR_ARGUMENT && (cst.failure == SQ_CUT_FAIL_NO_PATH || cst.failure == SQ_CUT_FAIL_NO_LOOP ||
-                                  cst.failure == SQ_CUT_FAIL_NEEDS_SPLIT))
-        st = err ? (err->code = SQ_ERR_SOLVER) : SQ_ERR_SOLVER;
+                                  cst.failure == SQ_CUT_FAIL_NEEDS_SPLIT)) {
+        st = SQ_ERR_SOLVER;
+        if (err) err->code = st;
+    }
     if (st) goto done;
     st = sq_pattern_reversed(&c->G.pattern, &c->pcw, err);
     if (st) goto done;
@@ -250,7 +252,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     if (genus >= 2) dopt.pattern = &c->pcw;
     sq_build_options bopt;
     memset(&bopt, 0, sizeof bopt);
-    const int mode = c->opt ? c->opt->guidance : SQ_GUIDE_AUTO;
+    const int mode = c->opt->guidance;
     c->guided = mode == SQ_GUIDE_ON || (mode == SQ_GUIDE_AUTO && genus >= 2);
     if (st_out) st_out->guided = c->guided;
     if (genus >= 2 && c->guided) {
@@ -260,7 +262,6 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
         st = guided_order(c, val, nc);
         if (st) goto done;
         c->glue.c = c->step_xy;
-        c->glue.chosen = c->step_glue;
         bopt.chooser = sq_guide_glue_chooser;
         bopt.chooser_user = &c->glue;
         dopt.build = &bopt;
@@ -421,9 +422,9 @@ static sq_status step_q_vertices(ctx *c, uint32_t *qv)
 
 static double ang_diff(double a, double b)
 {
-    double d = fmod(a - b, 2 * 3.14159265358979323846);
-    if (d > 3.14159265358979323846) d -= 2 * 3.14159265358979323846;
-    if (d < -3.14159265358979323846) d += 2 * 3.14159265358979323846;
+    double d = fmod(a - b, 2 * SQ_GUIDE_PI);
+    if (d > SQ_GUIDE_PI) d -= 2 * SQ_GUIDE_PI;
+    if (d < -SQ_GUIDE_PI) d += 2 * SQ_GUIDE_PI;
     return d;
 }
 
@@ -469,10 +470,10 @@ static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domai
         ord[j] = o;
     }
     /* rebuilds take Algorithm 1's recorded glue edges (no layouts) */
-    c->step_glue[0] = SQ_NONE;
+    c->glue.chosen[0] = SQ_NONE;
     sq_build_options again;
     memset(&again, 0, sizeof again);
-    again.glue_he = c->step_glue;
+    again.glue_he = c->glue.chosen;
     const sq_build_options *first = dopt->build;
     dopt->build = &again;
     for (uint32_t t = 0; t < k; t++) {
@@ -501,14 +502,13 @@ done:
     return st;
 }
 
-/* c->q_target: the surface cone each cone of Q stands for. After Algorithm
- * 1 (genus >= 2) that is the cone of the step that made it. Otherwise
- * (SQ_GUIDE_ON below genus 2) the cut surface and Q are laid out in the
- * unit disk with corresponding corners at the same angles and Q's cones
- * matched to the surface's by position (sq_guide.h); Q corner i is the
- * start of counterclockwise surface side (k - (i + r) % k) % k, as in
- * cut_surface. */
-static sq_status guide(ctx *c)
+/* Genus 0 and 1 with SQ_GUIDE_ON: the cut surface and Q are laid out in
+ * the unit disk with corresponding corners at the same angles and Q's
+ * cones matched to the surface's by position (sq_guide.h); Q corner i is
+ * the start of counterclockwise surface side (k - (i + r) % k) % k, as in
+ * cut_surface. Where the cones do not pair up (some on the cut or on Q's
+ * boundary), c->q_target is dropped and the tree is unguided. */
+static sq_status targets_by_matching(ctx *c)
 {
     const sq_mesh *m = c->m;
     const sq_metapolygon *Q = &c->D->quads;
@@ -523,23 +523,8 @@ static sq_status guide(ctx *c)
     int32_t *av = NULL, *bv = NULL;
     uint32_t *match = NULL;
     uint8_t *qbnd = calloc((size_t)Q->nv + 1, 1);
-    c->q_target = malloc((size_t)Q->nv * sizeof *c->q_target);
-    if (!v_xy || !q_xy || !sang || !qang || !qv || !sv || !qbnd || !c->q_target) {
+    if (!v_xy || !q_xy || !sang || !qang || !qv || !sv || !qbnd) {
         st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    for (uint32_t v = 0; v < Q->nv; v++) c->q_target[v] = SQ_NONE;
-    if (c->step_vertex) {
-        /* Algorithm 1 built Q: the centre of the j-th irregular face of the
-         * metapolygon stands for the cone of step j */
-        free(qv);
-        qv = malloc(((size_t)c->D->ncones + 1) * sizeof *qv);
-        if (!qv) {
-            st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-            goto done;
-        }
-        st = step_q_vertices(c, qv);
-        for (uint32_t j = 0; st == SQ_OK && j < c->D->ncones; j++) c->q_target[qv[j]] = c->step_vertex[j];
         goto done;
     }
     st = sq_guide_surface_disk(m, &c->G, v_xy, sang, c->err);
@@ -553,7 +538,7 @@ static sq_status guide(ctx *c)
         if (!qbnd[v] && Q->v_nface[v] != 4) qv[nq++] = v;
     for (uint32_t v = 0; v < m->nv; v++)
         if (c->S.valence[v] != 4 && !isnan(v_xy[2 * v])) sv[ns++] = v;
-    if (nq != ns) goto unguided; /* cones on the cut or Q's boundary */
+    if (nq != ns) goto unguided;
     a = malloc((2 * (size_t)nq + 2) * sizeof *a), b = malloc((2 * (size_t)nq + 2) * sizeof *b);
     av = malloc(((size_t)nq + 1) * sizeof *av), bv = malloc(((size_t)nq + 1) * sizeof *bv);
     match = malloc(((size_t)nq + 1) * sizeof *match);
@@ -584,6 +569,24 @@ done:
     free(av);
     free(bv);
     free(match);
+    return st;
+}
+
+/* c->q_target (Q->nv): the surface cone each cone of Q stands for. After
+ * Algorithm 1 (genus >= 2) that is the cone of the step that made it;
+ * otherwise the nearest one in the disk layouts (targets_by_matching). */
+static sq_status guide(ctx *c)
+{
+    const sq_metapolygon *Q = &c->D->quads;
+    c->q_target = malloc(((size_t)Q->nv + 1) * sizeof *c->q_target);
+    if (!c->q_target) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    for (uint32_t v = 0; v < Q->nv; v++) c->q_target[v] = SQ_NONE;
+    if (!c->step_vertex) return targets_by_matching(c);
+    uint32_t *qv = malloc(((size_t)c->D->ncones + 1) * sizeof *qv);
+    if (!qv) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    sq_status st = step_q_vertices(c, qv);
+    for (uint32_t j = 0; st == SQ_OK && j < c->D->ncones; j++) c->q_target[qv[j]] = c->step_vertex[j];
+    free(qv);
     return st;
 }
 
@@ -1418,22 +1421,19 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
     return SQ_OK;
 }
 
-/* One attempt with the options as given (opt is never NULL here). */
+/* One attempt with the options as given (opt and stats are never NULL here;
+ * the cone set has passed its checks). */
 static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
                             sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     double t_start = now_s();
-    sq_param_stats local;
-    if (!stats) stats = &local;
     memset(stats, 0, sizeof *stats);
     stats->verts_in = m->nv, stats->faces_in = m->nf;
-    sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
-    if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
-    if (st) return st;
+    sq_status st = SQ_OK;
     ctx c;
     memset(&c, 0, sizeof c);
     c.m = m, c.opt = opt, c.err = err;
-    c.keep_flips = opt ? opt->allow_flips : 0;
+    c.keep_flips = opt->allow_flips;
     c.S_valence = valence;
     sq_tsurf_init(&c.S);
     sq_cut_graph_init(&c.G);
@@ -1525,7 +1525,7 @@ done:
     free(c.o2m);
     free(c.q_target);
     free(c.step_vertex);
-    free(c.step_glue);
+    free(c.glue.chosen);
     sq_guide_glue_free(&c.glue);
     free(c.step_xy);
     free(c.surf_corner_angle);
@@ -1547,7 +1547,12 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     const uint64_t seed0 = o.seed;
     sq_param_stats local;
     if (!stats) stats = &local;
-    sq_status st = SQ_OK;
+    memset(stats, 0, sizeof *stats);
+    stats->verts_in = m->nv, stats->faces_in = m->nf;
+    /* the input's cone set, once for every attempt */
+    sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
+    if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
+    if (st) return st;
     for (uint32_t a = 0; a < n; a++) {
         o.seed = seed0 + a;
         if (a > 0 && o.progress) o.progress(o.progress_ctx, "retry with another cut graph", 0.0);

@@ -93,8 +93,8 @@ sq_status sq_valence_order_admissible(const uint32_t *valences, uint32_t n, uint
  * does not fit, e(l) < 0; were no valence > 4 left after it, everything
  * left would have negative excess and the total would be at most
  * prefix + e(l) <= -4. */
-sq_status sq_valence_order_greedy(const uint32_t *preferred, uint32_t n, uint32_t *out,
-                                  sq_error *err)
+sq_status sq_valence_order_greedy_index(const uint32_t *preferred, uint32_t n, uint32_t *index,
+                                        sq_error *err)
 {
     sq_status st = check_values(preferred, n, NULL, err);
     if (st == SQ_OK) st = check_total(preferred, n, err);
@@ -115,15 +115,26 @@ sq_status sq_valence_order_greedy(const uint32_t *preferred, uint32_t n, uint32_
                                     "greedy valence order found no valence > 4 to move forward");
             }
             used[pull] = 1;
-            out[m++] = preferred[pull];
+            index[m++] = pull;
             prefix += (int64_t)preferred[pull] - 4;
         }
         used[j] = 1;
-        out[m++] = preferred[j];
+        index[m++] = j;
         prefix += e;
     }
     assert(m == n);
     free(used);
-    assert(sq_valence_check_sequence(out, n, NULL, NULL) == SQ_OK);
     return SQ_OK;
+}
+
+sq_status sq_valence_order_greedy(const uint32_t *preferred, uint32_t n, uint32_t *out,
+                                  sq_error *err)
+{
+    uint32_t *index = malloc((n ? n : 1) * sizeof *index);
+    if (!index) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory ordering %u valences", n);
+    sq_status st = sq_valence_order_greedy_index(preferred, n, index, err);
+    for (uint32_t i = 0; st == SQ_OK && i < n; i++) out[i] = preferred[index[i]];
+    free(index);
+    assert(st != SQ_OK || sq_valence_check_sequence(out, n, NULL, NULL) == SQ_OK);
+    return st;
 }

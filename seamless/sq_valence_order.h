@@ -44,6 +44,12 @@ sq_status sq_valence_order_admissible(const uint32_t *valences, uint32_t n, uint
 sq_status sq_valence_order_greedy(const uint32_t *preferred, uint32_t n, uint32_t *out,
                                   sq_error *err);
 
+/* The same order as positions: index[i] is the position in `preferred` of
+ * the i-th valence taken (n entries), so that callers can carry what
+ * stands behind each valence (a cone vertex) along. */
+sq_status sq_valence_order_greedy_index(const uint32_t *preferred, uint32_t n, uint32_t *index,
+                                        sq_error *err);
+
 #ifdef __cplusplus
 }
 #endif
