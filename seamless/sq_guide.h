@@ -26,12 +26,14 @@
 #include "sq_error.h"
 #include "sq_mesh.h"
 #include "sq_metapolygon.h"
+#include "sq_omega.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define SQ_GUIDE_PI 3.14159265358979323846
+enum { SQ_GUIDE_LEFT = 1, SQ_GUIDE_RIGHT = 2 };
 
 /* Layout of the cut surface of m along G in the unit disk (seed 9.2: "a map
  * ... of the cut surface onto the unit disk"). The boundary walk of G (disk
@@ -96,6 +98,62 @@ void sq_guide_glue_free(sq_guide_glue *G);
 
 sq_status sq_guide_glue_chooser(void *user, const sq_metapolygon *P, uint32_t step, uint32_t valence,
                                 uint32_t *glue_he, sq_error *err);
+
+/* Seed 9.4 on the surface (sq_guide_tree.c): the n cones cone[0..n), in
+ * radial order (seed 9.2's step order), joined one by one to the tree
+ * grown from cone[0], each by a shortest path (Euclidean edge lengths)
+ * through vertices that are neither on G's cut nor cones, ending at the
+ * first tree vertex it reaches. For j >= 1, att_step[j] = p: that vertex
+ * lies on path p (the path of step p, from cone[p]; p = 0 is cone[0]
+ * alone), at the fraction att_frac[j] in [0, 1) of its length from
+ * cone[p] (0: the cone itself), arriving from its side att_side[j]
+ * (SQ_GUIDE_LEFT or SQ_GUIDE_RIGHT of path p walked from cone[p]; 0 at a
+ * cone). A cone walled in by the cut and other cones gets att_step[j] =
+ * SQ_NONE (no preference). att_step[0] = SQ_NONE. att_vertex (may be
+ * NULL): the vertex of m each path ends at (SQ_NONE where none).
+ * tree_next (m->nv, may be NULL): the tree as a forest rooted at cone[0]:
+ * for every tree vertex but cone[0] its neighbour along its path towards
+ * the path's end; SQ_NONE elsewhere. */
+sq_status sq_guide_surface_tree(const sq_mesh *m, const sq_cut_graph *G, uint32_t n, const uint32_t *cone,
+                                uint32_t *att_step, double *att_frac, uint8_t *att_side, uint32_t *att_vertex,
+                                uint32_t *tree_next, sq_error *err);
+
+/* The root path of the surface tree (seed 9.4: "the singularity closest to
+ * the boundary of the unit disk is connected to the closest boundary point
+ * by a shortest path"): from cone[step] through vertices neither on the
+ * cut, cones nor on the tree (tree_next from sq_guide_surface_tree) to the
+ * nearest inner vertex of a side of G (of side `side` only, unless that is
+ * SQ_NONE), entered from the cut disk's side of it. Out: vertex, side and
+ * index (side_he[side_off[side] + index] leaves vertex); SQ_NONE when no
+ * such vertex is reached. The path's vertices get tree_next towards the
+ * cone. */
+typedef struct sq_guide_root {
+    uint32_t step, side; /* in (side: SQ_NONE for any); side also out */
+    uint32_t vertex, index;
+} sq_guide_root;
+
+sq_status sq_guide_surface_root(const sq_mesh *m, const sq_cut_graph *G, uint32_t n, const uint32_t *cone,
+                                uint32_t *tree_next, sq_guide_root *root, sq_error *err);
+
+/* The same tree in Q (seed 9.4: the surface paths "replicated as discrete
+ * geodesic paths"): qv[j] is the cone of Q standing for step j. In step
+ * order, qv[j] is joined by a breadth-first shortest path (interior edges;
+ * through interior vertices of Q that are neither cones nor on the tree)
+ * to a vertex of Q's path att_step[j], arriving from side att_side[j] of
+ * it (att_side may be NULL), the one minimizing edges plus the distance
+ * from the fraction att_frac[j] of that path (where that is blocked: from
+ * either side, then to any tree vertex); finally
+ * qv[root_step] is joined to the flat boundary vertex of Q, the root,
+ * that minimizes edges plus root_cost (Q->nv, may be NULL). att_qvertex, att_qstep, att_qfrac (each may be NULL): the vertex
+ * of Q each path ends at, the step whose path holds it and its fraction of
+ * that path's length (in edges).
+ * T is replaced (sq_cone_tree_from_edges). SQ_ERR_SOLVER when a
+ * path is blocked in Q (the caller may fall back to
+ * sq_cone_tree_shortest). */
+sq_status sq_cone_tree_guided(const sq_metapolygon *Q, uint32_t n, const uint32_t *qv, const uint32_t *att_step,
+                              const double *att_frac, const uint8_t *att_side, uint32_t root_step,
+                              const double *root_cost, uint32_t *att_qvertex, uint32_t *att_qstep, double *att_qfrac, sq_cone_tree *T,
+                              sq_error *err);
 
 #ifdef __cplusplus
 }

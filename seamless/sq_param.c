@@ -81,6 +81,14 @@ typedef struct ctx {
                            /* = its glue edge per step (for rebuilds)     */
     uint32_t *step_vertex; /* genus >= 2, guided: the surface cone of each */
                            /* metapolygon step (seed 9.2, Algorithm 1)     */
+    uint32_t *s_tree_next; /* m->nv: the surface tree (sq_guide_surface_tree) */
+    uint32_t root_surface; /* the surface tree's root vertex on the cut    */
+    uint32_t root_cone;    /* its cone nearest the circle, where Q's root  */
+                           /* path starts (SQ_NONE: not guided)            */
+    uint32_t *q_branch;  /* Q->nv: seed 9.4 guided tree: the surface vertex */
+                         /* where the surface tree branched for a regular  */
+                         /* branch vertex of Q's tree; SQ_NONE elsewhere,  */
+                         /* NULL when the tree is not guided               */
     uint32_t *q_target;  /* Q->nv: the surface cone matched to a cone of Q */
                          /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
                          /* when unguided                                  */
@@ -205,6 +213,117 @@ done:
 }
 
 static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt);
+static sq_status step_q_vertices(ctx *c, uint32_t *qv);
+
+/* Seed 9.4 (guided, genus >= 2): the cone tree chosen on the surface in
+ * radial order (the steps' order) and replicated in Q. SQ_ERR_SOLVER when
+ * either side is blocked: the caller then takes Q's own shortest tree. */
+static sq_status guided_tree(ctx *c)
+{
+    const sq_metapolygon *Q = &c->D->quads;
+    uint32_t n = c->D->ncones;
+    size_t n1 = (size_t)n + 1;
+    uint32_t *qv = malloc(n1 * sizeof *qv), *att = malloc(n1 * sizeof *att);
+    uint32_t *sv = malloc(n1 * sizeof *sv), *qa = malloc(n1 * sizeof *qa), *qs = malloc(n1 * sizeof *qs);
+    double *qf = malloc(n1 * sizeof *qf), *rcost = NULL;
+    double *frac = malloc(n1 * sizeof *frac);
+    uint8_t *side = malloc(n1);
+    c->q_branch = malloc(((size_t)Q->nv + 1) * sizeof *c->q_branch);
+    c->s_tree_next = malloc(((size_t)c->m->nv + 1) * sizeof *c->s_tree_next);
+    sq_status st = SQ_OK;
+    if (!qv || !att || !sv || !qa || !qs || !qf || !frac || !side || !c->q_branch || !c->s_tree_next)
+        st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    if (st == SQ_OK) st = step_q_vertices(c, qv);
+    /* seed 9.4: the root path leaves from the cone nearest the circle */
+    uint32_t rs = 0;
+    double best = -1;
+    for (uint32_t j = 0; j < n; j++) {
+        double r = hypot(c->step_xy[2 * j], c->step_xy[2 * j + 1]);
+        if (r > best) best = r, rs = j;
+    }
+    if (st == SQ_OK)
+        st = sq_guide_surface_tree(c->m, &c->G, n, c->step_vertex, att, frac, side, sv, c->s_tree_next, c->err);
+    /* the surface root path as the seed draws it (to the nearest side),
+     * on a copy of the tree: it tells Q where its root should be */
+    sq_guide_root root = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
+    uint32_t *tn = st == SQ_OK ? malloc(((size_t)c->m->nv + 1) * sizeof *tn) : NULL;
+    if (st == SQ_OK && !tn) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    if (st == SQ_OK) {
+        memcpy(tn, c->s_tree_next, (size_t)c->m->nv * sizeof *tn);
+        st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, tn, &root, c->err);
+    }
+    free(tn);
+    const uint32_t k = c->k;
+    if (st == SQ_OK && root.side != SQ_NONE) {
+        /* Q's root on the side of Q that the surface root's side stands
+         * for (cut_surface: surface side k - 1 - (qs + r) mod k, read the
+         * other way), near the same fraction of it */
+        uint32_t qs_side = (2 * k - 1 - root.side - c->r % k) % k;
+        uint32_t ns = c->G.side_off[root.side + 1] - c->G.side_off[root.side];
+        double t_want = (1.0 - (double)root.index / (double)ns) * (double)c->D->side_len[qs_side];
+        rcost = malloc(((size_t)Q->nv + 1) * sizeof *rcost);
+        if (!rcost) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        for (uint32_t v = 0; rcost && v < Q->nv; v++) rcost[v] = 1e6;
+        uint32_t h = Q->v_he[c->D->corner_vert[qs_side]];
+        for (uint32_t t = 0; rcost && t < c->D->side_len[qs_side]; t++, h = Q->he_next[h])
+            if (t > 0) rcost[Q->he_vert[h]] = fabs((double)t - t_want);
+    }
+    if (st == SQ_OK) st = sq_cone_tree_guided(Q, n, qv, att, frac, side, rs, rcost, qa, qs, qf, c->T, c->err);
+    if (st == SQ_OK) {
+        /* the surface root path to the side Q's root is on */
+        uint32_t qside = SQ_NONE;
+        for (uint32_t i = 0; i < k && qside == SQ_NONE; i++) {
+            uint32_t h = Q->v_he[c->D->corner_vert[i]];
+            for (uint32_t t = 0; t < c->D->side_len[i]; t++, h = Q->he_next[h])
+                if (Q->he_vert[h] == c->T->root) qside = i;
+        }
+        if (qside != SQ_NONE) {
+            root.side = k - 1 - (qside + c->r) % k;
+            st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, c->s_tree_next, &root, c->err);
+            if (st == SQ_OK && root.vertex != SQ_NONE) c->root_surface = root.vertex;
+        }
+        if (st == SQ_OK) c->root_cone = c->step_vertex[rs];
+    }
+    if (st == SQ_OK) {
+        /* a regular branch vertex of Q's tree stands for the surface
+         * vertex where the same path joined the surface tree, or, where
+         * that is a cone, for the vertex at the same fraction of the
+         * surface path that Q's branch vertex lies on */
+        for (uint32_t v = 0; v < Q->nv; v++) c->q_branch[v] = SQ_NONE;
+        for (uint32_t j = 1; j < n; j++) {
+            if (qa[j] == SQ_NONE || Q->v_nface[qa[j]] != 4) continue;
+            if (sv[j] != SQ_NONE && c->S_valence[sv[j]] == 4) {
+                c->q_branch[qa[j]] = sv[j];
+                continue;
+            }
+            uint32_t p = qs[j];
+            if (p == SQ_NONE || p >= n) continue;
+            /* surface path p: from its cone along the tree to sv[p] */
+            uint32_t len = 0;
+            for (uint32_t x = c->step_vertex[p]; x != SQ_NONE && x != sv[p] && len <= c->m->nv; x = c->s_tree_next[x]) len++;
+            uint32_t want = (uint32_t)lround(qf[j] * (double)len);
+            if (want < 1 || want >= len) continue;
+            uint32_t x = c->step_vertex[p];
+            for (uint32_t i = 0; i < want; i++) x = c->s_tree_next[x];
+            if (c->S_valence[x] == 4) c->q_branch[qa[j]] = x;
+        }
+    } else {
+        free(c->q_branch);
+        c->q_branch = NULL;
+        free(c->s_tree_next);
+        c->s_tree_next = NULL;
+    }
+    free(qv);
+    free(att);
+    free(sv);
+    free(qa);
+    free(qs);
+    free(qf);
+    free(rcost);
+    free(frac);
+    free(side);
+    return st;
+}
 
 static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st_out)
 {
@@ -276,7 +395,9 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     if (st) goto done;
     double t2 = now_s();
     progress(c, "omega", 0.2);
-    st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
+    st = SQ_ERR_SOLVER;
+    if (c->step_vertex) st = guided_tree(c);
+    if (st == SQ_ERR_SOLVER) st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
     if (st == SQ_OK) st = sq_omega_build(c->D, c->T, c->O, err);
     if (st) goto done;
     double t3 = now_s();
@@ -373,6 +494,20 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
     uint32_t ir = (uint32_t)lround(frac * ns);
     if (ir < 1) ir = 1;
     if (ir > ns - 1) ir = ns - 1;
+    uint32_t at = SQ_NONE;
+    for (uint32_t e = 1; c->root_surface != SQ_NONE && e < ns; e++)
+        if (S->vert[side[e]] == c->root_surface) at = e;
+    if (at != SQ_NONE) {
+        ir = at; /* the surface tree's root path ends here */
+    } else if (c->root_cone != SQ_NONE) {
+        /* seed 9.4 guided tree: any place on the side splits it validly;
+         * the one nearest the cone Q's root path leaves from */
+        double best = INFINITY;
+        for (uint32_t e = 1; e < ns; e++) {
+            double d = sq_ts_dist(S, S->vert[side[e]], c->root_cone);
+            if (d < best) best = d, ir = e;
+        }
+    }
     uint32_t lr = k + 2 * c->T->nseg;
     if (O->nlabels != lr + 2 || O->label_partner[lr] != lr + 1) {
         free(side);
@@ -596,6 +731,78 @@ typedef struct node_item {
     uint32_t pos;    /* next position in the rotation list */
 } node_item;
 
+/* Seed 9.4: the surface tree's path from the origin of `sector` to
+ * `target` (both on the tree chosen by sq_guide_surface_tree), taken as
+ * the route when it still exists unchanged: every edge uncut and not
+ * split, every inner vertex off the cut and regular, the target off the
+ * cut, and its first edge inside `sector`. Returns 1 (path set), 0 (not
+ * usable), -1 (out of memory). */
+static int given_path(ctx *c, uint32_t sector, uint32_t target, uint32_t **path, uint32_t *npath)
+{
+    sq_tsurf *S = &c->S;
+    const uint32_t *nx = c->s_tree_next;
+    uint32_t a = S->vert[sector], first = c->step_vertex[0], nv = c->m->nv;
+    if (a >= nv || target >= nv || S->v_ncut[target]) return 0;
+    if (nx[a] == SQ_NONE && a != first) return 0; /* not on the surface tree */
+    if (nx[target] == SQ_NONE && target != first) return 0;
+    /* a's ancestors, then target's up to the first common one */
+    uint32_t na = 0, nb = 0, lca = SQ_NONE;
+    for (uint32_t x = a; x != SQ_NONE && na <= nv; x = nx[x]) na++;
+    uint32_t *up = malloc(((size_t)na + 1) * sizeof *up);
+    if (!up) return -1;
+    na = 0;
+    for (uint32_t x = a; x != SQ_NONE && na <= nv; x = nx[x]) up[na++] = x;
+    uint32_t *dn = NULL;
+    for (uint32_t x = target; x != SQ_NONE && nb <= nv; x = nx[x], nb++) {
+        for (uint32_t i = 0; i < na; i++)
+            if (up[i] == x) {
+                lca = i;
+                break;
+            }
+        if (lca != SQ_NONE) break;
+    }
+    int r = 0;
+    if (lca == SQ_NONE) goto out;
+    /* vertices: up[0 .. lca], then target's chain below the lca reversed */
+    uint32_t nd = nb; /* target's chain: nb vertices before the lca */
+    dn = malloc(((size_t)nd + 1) * sizeof *dn);
+    if (!dn) {
+        r = -1;
+        goto out;
+    }
+    {
+        uint32_t i = 0;
+        for (uint32_t x = target; i < nd; x = nx[x]) dn[i++] = x;
+    }
+    uint32_t len = lca + nd; /* edges */
+    if (len == 0) goto out;
+    uint32_t *p = realloc(*path, ((size_t)len + 1) * sizeof *p);
+    if (!p) {
+        r = -1;
+        goto out;
+    }
+    *path = p;
+    for (uint32_t e = 0; e < len; e++) {
+        uint32_t x = e < lca ? up[e] : e == lca ? up[lca] : dn[nd - (e - lca)];
+        uint32_t y = e + 1 <= lca ? up[e + 1] : dn[nd - 1 - (e - lca)];
+        if (e > 0 && (S->v_ncut[x] || S->valence[x] != 4)) goto out;
+        uint32_t h0 = S->v_he[x], h = h0, found = SQ_NONE;
+        do {
+            if (sq_ts_head(S, h) == y) found = h;
+            h = sq_ts_ccw(S, h);
+        } while (h != h0 && found == SQ_NONE);
+        if (found == SQ_NONE || S->kind[found]) goto out;
+        p[e] = found;
+    }
+    if (sq_tsurf_sector_of(S, p[0]) != sector) goto out;
+    *npath = len;
+    r = 1;
+out:
+    free(up);
+    free(dn);
+    return r;
+}
+
 static sq_status replicate_tree(ctx *c, uint32_t root_he)
 {
     sq_tsurf *S = &c->S;
@@ -657,27 +864,59 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
         int is_cone_node = (T->node[te] & SQ_TREE_CONE) != 0;
         double tlen = scale * (double)(T->seg_off[s + 1] - T->seg_off[s]);
         npath = 0;
-        if (sq_tsurf_open_sector(S, it->sector) < 0) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            goto done;
-        }
         /* guided: only the matched cone is a target (seed 9.2) */
         uint32_t tgt = is_cone_node && c->q_target ? c->q_target[qend] : SQ_NONE;
         if (tgt != SQ_NONE && !free_cone[tgt]) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "cone at vertex %u is matched twice", tgt);
             goto done;
         }
+        /* seed 9.4 guided tree: a regular branch vertex goes where the
+         * surface tree branched, while that vertex is still free */
+        uint32_t btgt = !is_cone_node && c->q_branch ? c->q_branch[qend] : SQ_NONE;
+        if (btgt != SQ_NONE && S->v_ncut[btgt]) btgt = SQ_NONE;
+        /* the surface tree's own path, where it leaves in this sector */
+        uint32_t want = tgt != SQ_NONE ? tgt : btgt;
+        if (want != SQ_NONE && c->s_tree_next) {
+            int r = given_path(c, it->sector, want, &path, &npath);
+            if (r < 0) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                goto done;
+            }
+        }
         const uint8_t *mask = free_cone;
         if (tgt != SQ_NONE) only[tgt] = 1, mask = only;
-        if (is_cone_node)
+        if (npath == 0 && sq_tsurf_open_sector(S, it->sector) < 0) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        if (npath == 0 && btgt != SQ_NONE) {
+            if (sq_tsurf_open_vertex(S, btgt) < 0) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                goto done;
+            }
+            /* the route reads the mask of every regular vertex */
+            uint8_t *bmask = calloc(S->nv, 1);
+            if (!bmask) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                goto done;
+            }
+            bmask[btgt] = 1;
+            st = sq_tsurf_route(S, it->sector, SQ_ROUTE_CONE, 4, bmask, tlen, SQ_NONE, &path, &npath, err);
+            free(bmask);
+            if (st == SQ_OK && sec_reserve(c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            if (st == SQ_ERR_INTERNAL) st = SQ_OK, npath = 0; /* unreachable: a free branch vertex */
+            if (st) goto done;
+        }
+        if (npath == 0 && is_cone_node)
             for (uint32_t v = 0; v < S->nv_input; v++)
                 if (mask[v] && S->valence[v] == (int32_t)Q->v_nface[qend] && sq_tsurf_open_vertex(S, v) < 0) {
                     st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                     goto done;
                 }
-        st = sq_tsurf_route(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
-                            is_cone_node ? (int32_t)Q->v_nface[qend] : 4, mask, tlen, SQ_NONE,
-                            &path, &npath, err);
+        if (npath == 0)
+            st = sq_tsurf_route(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
+                                is_cone_node ? (int32_t)Q->v_nface[qend] : 4, mask, tlen, SQ_NONE,
+                                &path, &npath, err);
         if (st == SQ_ERR_INTERNAL) {
             npath = 0;
             st = sq_tsurf_route_faces(S, it->sector, is_cone_node ? SQ_ROUTE_CONE : SQ_ROUTE_FREE,
@@ -1434,6 +1673,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     memset(&c, 0, sizeof c);
     c.m = m, c.opt = opt, c.err = err;
     c.keep_flips = opt->allow_flips;
+    c.root_cone = c.root_surface = SQ_NONE;
     c.S_valence = valence;
     sq_tsurf_init(&c.S);
     sq_cut_graph_init(&c.G);
@@ -1524,6 +1764,8 @@ done:
     free(c.O);
     free(c.o2m);
     free(c.q_target);
+    free(c.q_branch);
+    free(c.s_tree_next);
     free(c.step_vertex);
     free(c.glue.chosen);
     sq_guide_glue_free(&c.glue);

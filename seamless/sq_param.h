@@ -10,10 +10,12 @@
  *     guidance (seed 9.2, genus >= 2; sq_guide.h) its cones are ordered and
  *     glued after a disk layout of M^c, and its corners matched to M^c's at
  *     similar angles, so that each cone of Q stands for one surface cone;
- *  3. cone tree in Q and the flat domain Omega (sq_omega.h);
- *  4. the same tree on M^c, path by path in the tree's rotation order, with
- *     Steiner vertices by edge splits where paths would block each other
- *     (seed 7, [SAPH04]);
+ *  3. cone tree in Q and the flat domain Omega (sq_omega.h); guided, the
+ *     tree is first chosen on M^c by shortest paths in radial order and
+ *     replicated in Q (seed 9.4; sq_guide_surface_tree);
+ *  4. the same tree on M^c, path by path in the tree's rotation order (the
+ *     surface tree's own paths where they fit), with Steiner vertices by
+ *     edge splits where paths would block each other (seed 7, [SAPH04]);
  *  5. boundary map by normalized arc length between corresponding corners
  *     (seed 8), seam UVs snapped to a dyadic grid so that every transition
  *     is exact in floating point (seamless-notes 5);

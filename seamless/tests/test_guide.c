@@ -3,7 +3,8 @@
  * order by distance from the disk centre, the metapolygon layout, and
  * Algorithm 1 as a glue chooser of the domain construction (property test:
  * random cone sets and positions give valid domains whose irregular faces
- * come in the chosen order). */
+ * come in the chosen order); the seed 9.4 cone tree chosen on the surface
+ * (real meshes and cut graphs) and replicated in Q (random domains). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -22,6 +23,7 @@
 #include "sq_domain.h"
 #include "sq_guide.h"
 #include "sq_metapolygon.h"
+#include "sq_omega.h"
 #include "sq_valence_order.h"
 
 #define PI 3.14159265358979323846
@@ -327,12 +329,204 @@ static void test_algorithm1_domains(void **state)
     }
 }
 
+
+static int mesh_adjacent(const sq_mesh *m, uint32_t a, uint32_t b)
+{
+    uint32_t h0 = m->v_he[a], h = h0;
+    do {
+        if (m->he_vert[m->he_next[h]] == b) return 1;
+        h = m->he_next[m->he_twin[h]];
+    } while (h != h0);
+    return 0;
+}
+
+/* Seed 9.4 on real meshes: the surface tree of the cones (in a random
+ * order) is a forest rooted at the first cone along mesh edges, through
+ * regular vertices off the cut; every cone that reaches it hangs on the
+ * path it names at the fraction it names; the root path ends on the side
+ * and index it reports, at a vertex of the cut that is no corner. */
+static void test_surface_tree(void **state)
+{
+    (void)state;
+    static const char *models[] = {"mpz/eight", "mpz/cup", "mpz/holes3", "mpz/helmet", "mpz/genus3"};
+    rng_state = 4242;
+    for (uint32_t mi = 0; mi < sizeof models / sizeof *models; mi++)
+        for (uint64_t seed = 1; seed <= 2; seed++) {
+            char path[256];
+            sq_mesh m;
+            snprintf(path, sizeof path, "%s.obj", models[mi]);
+            sq_test_load_mesh(&m, path);
+            snprintf(path, sizeof path, "%s_Th_hat", models[mi]);
+            int32_t *val = sq_test_load_valence(path, m.nv);
+            uint8_t *cone = calloc(m.nv, 1), *on_cut = calloc(m.nv, 1);
+            uint32_t *cv = malloc(m.nv * sizeof *cv), n = 0;
+            for (uint32_t v = 0; v < m.nv; v++)
+                if (val[v] != 4) cone[v] = 1, cv[n++] = v;
+            for (uint32_t i = n; i > 1; i--) { /* a random order */
+                uint32_t j = (uint32_t)(rng() % i), t = cv[i - 1];
+                cv[i - 1] = cv[j], cv[j] = t;
+            }
+            sq_cut_graph G;
+            sq_cut_graph_init(&G);
+            sq_cut_options opt;
+            sq_cut_options_default(&opt);
+            opt.seed = seed;
+            sq_error err = {0};
+            if (sq_cut_graph_build(&m, cone, &opt, &G, NULL, &err)) {
+                /* a cut graph this seed cannot route: not this test's subject */
+                free(cone), free(on_cut), free(cv), free(val);
+                sq_cut_graph_free(&G);
+                sq_mesh_free(&m);
+                continue;
+            }
+            for (uint32_t h = 0; h < m.nh; h++)
+                if (G.he_cut[h]) on_cut[m.he_vert[h]] = 1;
+            uint32_t *att = malloc(n * sizeof *att), *av = malloc(n * sizeof *av);
+            uint32_t *nx = malloc(m.nv * sizeof *nx);
+            double *frac = malloc(n * sizeof *frac);
+            uint8_t *side = malloc(n);
+            assert_int_equal(sq_guide_surface_tree(&m, &G, n, cv, att, frac, side, av, nx, &err), SQ_OK);
+            assert_int_equal(att[0], SQ_NONE);
+            assert_int_equal(nx[cv[0]], SQ_NONE);
+            uint32_t joined = 0;
+            for (uint32_t v = 0; v < m.nv; v++) {
+                if (nx[v] == SQ_NONE) continue;
+                assert_false(on_cut[v]);
+                assert_true(mesh_adjacent(&m, v, nx[v]));
+                if (!cone[v]) assert_int_equal(val[v], 4);
+                /* the forest reaches the first cone without a cycle */
+                uint32_t x = v, steps = 0;
+                while (nx[x] != SQ_NONE && steps <= m.nv) x = nx[x], steps++;
+                assert_int_equal(x, cv[0]);
+            }
+            for (uint32_t j = 1; j < n; j++) {
+                if (att[j] == SQ_NONE) continue; /* walled in: no preference */
+                joined++;
+                assert_true(att[j] < j);
+                assert_true(frac[j] >= 0 && frac[j] < 1);
+                assert_true(side[j] <= SQ_GUIDE_RIGHT);
+                assert_true((side[j] == 0) == (frac[j] == 0));
+                assert_true(nx[cv[j]] != SQ_NONE);
+                /* the vertex reached lies on path att[j]: from cone att[j]
+                 * along the tree */
+                uint32_t x = cv[att[j]], steps = 0;
+                while (x != av[j] && x != SQ_NONE && steps++ <= m.nv) x = nx[x];
+                assert_int_equal(x, av[j]);
+                if (frac[j] == 0) assert_int_equal(av[j], cv[att[j]]);
+            }
+            assert_true(joined >= n / 2);
+            /* the root path, to any side, then to a named one */
+            sq_guide_root root = {(uint32_t)(rng() % n), SQ_NONE, SQ_NONE, SQ_NONE};
+            assert_int_equal(sq_guide_surface_root(&m, &G, n, cv, nx, &root, &err), SQ_OK);
+            if (root.vertex != SQ_NONE) {
+                assert_true(on_cut[root.vertex]);
+                assert_true(root.side < G.pattern.k);
+                assert_true(root.index >= 1 && root.index < G.side_off[root.side + 1] - G.side_off[root.side]);
+                assert_int_equal(m.he_vert[G.side_he[G.side_off[root.side] + root.index]], root.vertex);
+                for (uint32_t i = 0; i < G.pattern.k; i++) assert_int_not_equal(G.corner_vertex[i], root.vertex);
+                uint32_t x = nx[root.vertex], steps = 0;
+                while (x != cv[root.step] && steps++ <= m.nv) {
+                    assert_false(on_cut[x]);
+                    assert_false(cone[x]);
+                    x = nx[x];
+                }
+                assert_int_equal(x, cv[root.step]);
+            }
+            sq_guide_root r2 = {root.step, (root.side == SQ_NONE ? 0 : root.side + 1) % G.pattern.k, SQ_NONE, SQ_NONE};
+            uint32_t want = r2.side;
+            assert_int_equal(sq_guide_surface_root(&m, &G, n, cv, nx, &r2, &err), SQ_OK);
+            if (r2.vertex != SQ_NONE) {
+                assert_int_equal(r2.side, want);
+                assert_int_equal(m.he_vert[G.side_he[G.side_off[r2.side] + r2.index]], r2.vertex);
+            }
+            free(att), free(av), free(nx), free(frac), free(side);
+            free(cone), free(on_cut), free(cv), free(val);
+            sq_cut_graph_free(&G);
+            sq_mesh_free(&m);
+        }
+}
+
+/* Seed 9.4 in Q: for random domains and random attachments (each step on
+ * an earlier path, at a random fraction and side), Q's tree is a valid
+ * cone tree (sq_cone_tree_from_edges checks it) whose root is a flat
+ * boundary vertex, and every step ends on the tree; where the root cost
+ * allows one side only and that side is reachable, the root lies on it. */
+static void test_cone_tree_guided(void **state)
+{
+    (void)state;
+    rng_state = 777;
+    const uint32_t cases = long_mode() ? 300 : 30;
+    uint32_t ok = 0;
+    for (uint32_t c = 0; c < cases; c++) {
+        uint32_t g = 2 + c % 3;
+        int32_t v[512];
+        uint32_t n = random_cones(g, v, 512);
+        sq_domain D;
+        sq_domain_options dopt = {NULL, SQ_NONE, NULL, 0};
+        sq_error err = {0};
+        if (sq_domain_build(g, v, n, &dopt, &D, &err)) fail_msg("case %u: %s", c, err.msg);
+        const sq_metapolygon *Q = &D.quads;
+        uint8_t *bnd = calloc(Q->nv, 1);
+        for (uint32_t h = 0; h < Q->nh; h++)
+            if (Q->he_face[h] == SQ_NONE) bnd[Q->he_vert[h]] = 1;
+        uint32_t qv[512], nq = 0;
+        for (uint32_t x = 0; x < Q->nv && nq < 512; x++)
+            if (!bnd[x] && Q->v_nface[x] != 4) qv[nq++] = x;
+        for (uint32_t i = nq; i > 1; i--) {
+            uint32_t j = (uint32_t)(rng() % i), t = qv[i - 1];
+            qv[i - 1] = qv[j], qv[j] = t;
+        }
+        uint32_t att[512], qa[512], qs[512];
+        double frac[512], qf[512];
+        uint8_t side[512];
+        att[0] = SQ_NONE, frac[0] = 0, side[0] = 0;
+        for (uint32_t j = 1; j < nq; j++) {
+            att[j] = (uint32_t)(rng() % j);
+            frac[j] = att[j] == 0 || rng() % 3 == 0 ? 0 : urand() * 0.99;
+            side[j] = frac[j] == 0 ? 0 : (uint8_t)(1 + rng() % 2);
+        }
+        uint32_t rs = (uint32_t)(rng() % nq);
+        /* the root wanted on side 0 of Q only */
+        double *rcost = malloc(Q->nv * sizeof *rcost);
+        for (uint32_t x = 0; x < Q->nv; x++) rcost[x] = 1e6;
+        uint32_t h = Q->v_he[D.corner_vert[0]];
+        for (uint32_t t = 0; t < D.side_len[0]; t++, h = Q->he_next[h])
+            if (t > 0) rcost[Q->he_vert[h]] = 0;
+        sq_cone_tree T;
+        sq_cone_tree_init(&T);
+        sq_status st = sq_cone_tree_guided(Q, nq, qv, att, frac, side, rs, rcost, qa, qs, qf, &T, &err);
+        if (st == SQ_OK) {
+            ok++;
+            assert_true(bnd[T.root]);
+            assert_int_equal(Q->v_nface[T.root], 2);
+            uint8_t *on_tree = calloc(Q->nv, 1);
+            for (uint32_t i = 0; i < T.nverts; i++) on_tree[T.vert[i]] = 1;
+            for (uint32_t j = 0; j < nq; j++) assert_true(on_tree[qv[j]]);
+            for (uint32_t j = 1; j < nq; j++) {
+                assert_true(on_tree[qa[j]]);
+                assert_true(qs[j] < j);
+                assert_true(qf[j] >= 0 && qf[j] < 1);
+            }
+            free(on_tree);
+        } else {
+            assert_int_equal(st, SQ_ERR_SOLVER);
+            print_message("case %u: %s\n", c, err.msg);
+        }
+        free(rcost);
+        free(bnd);
+        sq_cone_tree_free(&T);
+        sq_domain_free(&D);
+    }
+    assert_true(ok >= cases * 3 / 4);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_surface_disk),       cmocka_unit_test(test_domain_disk),
         cmocka_unit_test(test_match),              cmocka_unit_test(test_cone_order),
         cmocka_unit_test(test_layout_single_face), cmocka_unit_test(test_algorithm1_domains),
+        cmocka_unit_test(test_surface_tree),       cmocka_unit_test(test_cone_tree_guided),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
