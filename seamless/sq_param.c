@@ -1511,6 +1511,149 @@ done:
     return st;
 }
 
+/* ---- step 7b: vertices moved into the kernels of their stars ---------- */
+
+/* The UV of the corner of face(h) at its origin. */
+static const double *corner_xy(const ctx *c, const uint32_t *v_uv, uint32_t h)
+{
+    const sq_tsurf *S = &c->S;
+    uint32_t v = S->vert[h];
+    uint32_t u = S->v_ncut[v] ? c->sec_uv[sq_tsurf_sector_of(S, h)] : v_uv[v];
+    return c->uv + 2 * u;
+}
+
+static int face_ok(const ctx *c, const uint32_t *v_uv, uint32_t f)
+{
+    uint32_t h = c->S.f_he[f];
+    return sq_orient2d(corner_xy(c, v_uv, h), corner_xy(c, v_uv, c->S.next[h]),
+                       corner_xy(c, v_uv, c->S.next[c->S.next[h]])) > 0;
+}
+
+/* Clips the convex polygon p (n points, counterclockwise) by the half-plane
+ * left of a->b; returns the new count (q: room for n + 1 points). */
+static uint32_t clip_left(const double *p, uint32_t n, const double a[2], const double b[2], double *q)
+{
+    uint32_t m = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        const double *x = p + 2 * i, *y = p + 2 * ((i + 1) % n);
+        double sx = (b[0] - a[0]) * (x[1] - a[1]) - (b[1] - a[1]) * (x[0] - a[0]);
+        double sy = (b[0] - a[0]) * (y[1] - a[1]) - (b[1] - a[1]) * (y[0] - a[0]);
+        if (sx > 0) q[2 * m] = x[0], q[2 * m + 1] = x[1], m++;
+        if ((sx > 0) != (sy > 0) && sx != sy) {
+            double t = sx / (sx - sy);
+            q[2 * m] = x[0] + t * (y[0] - x[0]), q[2 * m + 1] = x[1] + t * (y[1] - x[1]), m++;
+        }
+    }
+    return m;
+}
+
+/* Tutte's map is bijective in exact arithmetic, but where a cell is
+ * squeezed its vertices can land within a rounding step of a line and
+ * their triangles flip in doubles. Each vertex off the cut on such a
+ * triangle is moved to the centroid of the kernel of its star (the points
+ * that see every edge of its link on the left), kept only if its star then
+ * has fewer bad triangles (exact predicate); a few sweeps, the neighbours
+ * of moved vertices included. This is the vertex step of progressive
+ * embedding [SJZP19] without its collapses: it never makes a triangle bad,
+ * and every triangle is checked exactly afterwards anyway. Returns the
+ * number of bad triangles left. */
+static uint32_t repair_flips(ctx *c, uint32_t *v_uv, uint32_t sweeps)
+{
+    sq_tsurf *S = &c->S;
+    uint32_t nv = S->nv, nbad = 0;
+    uint8_t *mark = calloc(nv, 1);
+    uint32_t *list = malloc((size_t)nv * sizeof *list);
+    uint32_t cap = 64;
+    double *poly = malloc(2 * (size_t)cap * sizeof *poly), *tmp = malloc(2 * (size_t)cap * sizeof *tmp);
+    if (!mark || !list || !poly || !tmp) goto out;
+    for (uint32_t f = 0; f < S->nf; f++) nbad += !face_ok(c, v_uv, f);
+    for (uint32_t it = 0; it < sweeps && nbad; it++) {
+        uint32_t nl = 0;
+        for (uint32_t f = 0; f < S->nf; f++) {
+            if (face_ok(c, v_uv, f)) continue;
+            uint32_t h = S->f_he[f];
+            for (int k = 0; k < 3; k++, h = S->next[h]) {
+                uint32_t v = S->vert[h];
+                if (!S->v_ncut[v] && !mark[v]) mark[v] = 1, list[nl++] = v;
+                /* and the free neighbours, which may have to make room */
+                uint32_t g0 = S->v_he[v], g = g0;
+                do {
+                    uint32_t w = sq_ts_head(S, g);
+                    if (!S->v_ncut[w] && !mark[w]) mark[w] = 1, list[nl++] = w;
+                    g = sq_ts_ccw(S, g);
+                } while (g != g0);
+            }
+        }
+        uint32_t moved = 0;
+        for (uint32_t i = 0; i < nl; i++) {
+            uint32_t v = list[i];
+            mark[v] = 0;
+            /* the link counterclockwise: heads of the outgoing halfedges */
+            uint32_t deg = 0, g0 = S->v_he[v], g = g0;
+            do {
+                deg++;
+                g = sq_ts_ccw(S, g);
+            } while (g != g0);
+            if (deg + 8 > cap) {
+                cap = 2 * (deg + 8);
+                double *p2 = realloc(poly, 2 * (size_t)cap * sizeof *poly), *t2 = realloc(tmp, 2 * (size_t)cap * sizeof *tmp);
+                if (p2) poly = p2;
+                if (t2) tmp = t2;
+                if (!p2 || !t2) goto out;
+            }
+            /* start from the link's bounding box, clip by every link edge */
+            double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+            uint32_t bad_before = 0;
+            g = g0;
+            do {
+                const double *w = corner_xy(c, v_uv, S->twin[g]);
+                for (int k = 0; k < 2; k++) lo[k] = fmin(lo[k], w[k]), hi[k] = fmax(hi[k], w[k]);
+                bad_before += !face_ok(c, v_uv, S->face[g]);
+                g = sq_ts_ccw(S, g);
+            } while (g != g0);
+            if (!bad_before && it > 0) continue;
+            uint32_t n = 4;
+            poly[0] = lo[0], poly[1] = lo[1], poly[2] = hi[0], poly[3] = lo[1];
+            poly[4] = hi[0], poly[5] = hi[1], poly[6] = lo[0], poly[7] = hi[1];
+            g = g0;
+            do {
+                /* face(g) = (v, head(g), head(ccw g)): v must lie left of
+                 * head(g) -> head(ccw g) */
+                const double *a = corner_xy(c, v_uv, S->next[g]), *b = corner_xy(c, v_uv, sq_ts_prev(S, g));
+                n = clip_left(poly, n, a, b, tmp);
+                double *sw = poly;
+                poly = tmp, tmp = sw;
+                g = sq_ts_ccw(S, g);
+            } while (g != g0 && n >= 3);
+            if (n < 3) continue;
+            double cx = 0, cy = 0;
+            for (uint32_t k = 0; k < n; k++) cx += poly[2 * k], cy += poly[2 * k + 1];
+            cx /= n, cy /= n;
+            double *p = c->uv + 2 * v_uv[v], old[2] = {p[0], p[1]};
+            p[0] = cx, p[1] = cy;
+            uint32_t bad_after = 0;
+            g = g0;
+            do {
+                bad_after += !face_ok(c, v_uv, S->face[g]);
+                g = sq_ts_ccw(S, g);
+            } while (g != g0);
+            if (bad_after < bad_before || (bad_after == 0 && bad_before == 0)) {
+                nbad -= bad_before - bad_after;
+                moved++;
+            } else {
+                p[0] = old[0], p[1] = old[1];
+            }
+        }
+        if (!moved) break;
+    }
+out:
+    free(mark);
+    free(list);
+    free(poly);
+    free(tmp);
+    return nbad;
+}
+
 /* ---- output ---------------------------------------------------------- */
 
 /* Distortion of the map (stats): per triangle the singular values s1 >= s2
@@ -1736,6 +1879,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     }
     st = tutte(&c, v_uv);
     if (st) goto done;
+    (void)repair_flips(&c, v_uv, 50); /* step 7b; step 8 checks every triangle */
     double t4 = now_s();
     progress(&c, "check", 0.9);
     st = assemble(&c, v_uv, valence, out, stats);
