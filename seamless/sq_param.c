@@ -1565,12 +1565,22 @@ static uint32_t repair_flips(ctx *c, uint32_t *v_uv, uint32_t sweeps)
     uint32_t *list = malloc((size_t)nv * sizeof *list);
     uint32_t cap = 64;
     double *poly = malloc(2 * (size_t)cap * sizeof *poly), *tmp = malloc(2 * (size_t)cap * sizeof *tmp);
+    uint32_t *badf = NULL, nbf = 0;
     if (!mark || !list || !poly || !tmp) goto out;
     for (uint32_t f = 0; f < S->nf; f++) nbad += !face_ok(c, v_uv, f);
+    /* thousands of bad triangles are a squeezed map, not rounding: the
+     * vertex moves cannot help there, and cost time */
+    if (nbad == 0 || nbad > 1000) goto out;
+    badf = malloc((size_t)nbad * sizeof *badf);
+    if (!badf) goto out;
+    for (uint32_t f = 0; f < S->nf; f++)
+        if (!face_ok(c, v_uv, f)) badf[nbf++] = f;
     for (uint32_t it = 0; it < sweeps && nbad; it++) {
-        uint32_t nl = 0;
-        for (uint32_t f = 0; f < S->nf; f++) {
+        uint32_t nl = 0, keep = 0;
+        for (uint32_t i = 0; i < nbf; i++) {
+            uint32_t f = badf[i];
             if (face_ok(c, v_uv, f)) continue;
+            badf[keep++] = f; /* bad faces only get fewer */
             uint32_t h = S->f_he[f];
             for (int k = 0; k < 3; k++, h = S->next[h]) {
                 uint32_t v = S->vert[h];
@@ -1584,6 +1594,7 @@ static uint32_t repair_flips(ctx *c, uint32_t *v_uv, uint32_t sweeps)
                 } while (g != g0);
             }
         }
+        nbf = keep;
         uint32_t moved = 0;
         for (uint32_t i = 0; i < nl; i++) {
             uint32_t v = list[i];
@@ -1603,14 +1614,16 @@ static uint32_t repair_flips(ctx *c, uint32_t *v_uv, uint32_t sweeps)
             }
             /* start from the link's bounding box, clip by every link edge */
             double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-            uint32_t bad_before = 0;
+            uint32_t bad_before = 0, was_bad = 0; /* was_bad: bit i for the i-th face (i < 32) */
             g = g0;
-            do {
+            for (uint32_t i = 0; i < deg; i++, g = sq_ts_ccw(S, g)) {
                 const double *w = corner_xy(c, v_uv, S->twin[g]);
                 for (int k = 0; k < 2; k++) lo[k] = fmin(lo[k], w[k]), hi[k] = fmax(hi[k], w[k]);
-                bad_before += !face_ok(c, v_uv, S->face[g]);
-                g = sq_ts_ccw(S, g);
-            } while (g != g0);
+                int b = !face_ok(c, v_uv, S->face[g]);
+                bad_before += b;
+                if (b && i < 32) was_bad |= 1u << i;
+            }
+            if (deg > 32) continue; /* (never on a triangle mesh of sane valence) */
             if (!bad_before && it > 0) continue;
             uint32_t n = 4;
             poly[0] = lo[0], poly[1] = lo[1], poly[2] = hi[0], poly[3] = lo[1];
@@ -1631,13 +1644,14 @@ static uint32_t repair_flips(ctx *c, uint32_t *v_uv, uint32_t sweeps)
             cx /= n, cy /= n;
             double *p = c->uv + 2 * v_uv[v], old[2] = {p[0], p[1]};
             p[0] = cx, p[1] = cy;
-            uint32_t bad_after = 0;
+            uint32_t bad_after = 0, worse = 0;
             g = g0;
-            do {
-                bad_after += !face_ok(c, v_uv, S->face[g]);
-                g = sq_ts_ccw(S, g);
-            } while (g != g0);
-            if (bad_after < bad_before || (bad_after == 0 && bad_before == 0)) {
+            for (uint32_t i = 0; i < deg; i++, g = sq_ts_ccw(S, g)) {
+                int b = !face_ok(c, v_uv, S->face[g]);
+                bad_after += b;
+                if (b && !(was_bad >> i & 1u)) worse = 1; /* a good triangle would turn bad */
+            }
+            if (!worse && (bad_after < bad_before || bad_before == 0)) {
                 nbad -= bad_before - bad_after;
                 moved++;
             } else {
@@ -1647,6 +1661,7 @@ static uint32_t repair_flips(ctx *c, uint32_t *v_uv, uint32_t sweeps)
         if (!moved) break;
     }
 out:
+    free(badf);
     free(mark);
     free(list);
     free(poly);
