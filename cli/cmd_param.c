@@ -79,6 +79,12 @@ static void help(FILE *f)
             "                      angles (genus 0 and 1: only the cone matching). off: Q\n"
             "                      with the fewest quads, each cone of Q given the\n"
             "                      nearest free surface cone as the tree reaches it\n"
+            "  --diagnose OUT.svg  when the map fails its orientation check: the last\n"
+            "                      attempt is rebuilt keeping its flips, and the cells of\n"
+            "                      Omega holding bad triangles are drawn on the surface and\n"
+            "                      in UV, worst first, with their rectangle and the surface\n"
+            "                      length of each side (also on stderr and in --json); the\n"
+            "                      map itself is still not written\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -281,12 +287,53 @@ static int parse_u64(const char *arg, unsigned long long lo, unsigned long long 
     return 1;
 }
 
+#define DIAG_CELLS 6
+
+/* --diagnose: the last attempt again (its seed, one attempt), keeping its
+ * flips; the cells with bad triangles reported on stderr and drawn. Returns
+ * 1 when the picture was written. */
+static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, unsigned long long seed,
+                          const sq_param_stats *failed, int guidance, const char *path, sq_param_cell *cells,
+                          uint32_t *ncells)
+{
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.seed = failed->seed_used ? failed->seed_used : seed;
+    opt.attempts = 1;
+    opt.guidance = guidance;
+    opt.allow_flips = 1;
+    sq_param P;
+    sq_param_init(&P);
+    sq_param_stats st;
+    sq_error e;
+    sq_error_clear(&e);
+    int ok = 0;
+    if (sq_param_build(mesh, val, &opt, &P, &st, &e) == SQ_OK &&
+        sq_param_bad_cells(&P, cells, DIAG_CELLS, ncells, &e) == SQ_OK &&
+        sq_param_write_cells_svg(path, &P, cells, *ncells < DIAG_CELLS ? *ncells : DIAG_CELLS, &e) == SQ_OK) {
+        ok = 1;
+        fprintf(stderr, "seamquad param: diagnosis (seed %llu): %u cells of Omega hold bad triangles; %s\n",
+                (unsigned long long)opt.seed, *ncells, path);
+        for (uint32_t i = 0; i < *ncells && i < DIAG_CELLS; i++)
+            fprintf(stderr, "  cell %u: %u of %u triangles bad; rectangle %g x %g; surface length of its sides "
+                            "(u=min, v=min, u=max, v=max) %.3g %.3g %.3g %.3g; %u runs%s\n",
+                    i, cells[i].bad, cells[i].faces, cells[i].umax - cells[i].umin, cells[i].vmax - cells[i].vmin,
+                    cells[i].side_len[0], cells[i].side_len[1], cells[i].side_len[2], cells[i].side_len[3],
+                    cells[i].runs, cells[i].runs > 4 ? " (a side folds)" : "");
+    } else {
+        fprintf(stderr, "seamquad param: diagnosis failed: %s\n", e.msg);
+    }
+    sq_param_free(&P);
+    return ok;
+}
+
 int sq_cmd_param(int argc, char **argv)
 {
     const char *mesh_path = NULL, *cones_path = NULL;
     output out[NOUT];
     memset(out, 0, sizeof out);
     int json = 0, quiet = 0;
+    const char *diagnose = NULL;
     unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS;
     int guidance = SQ_GUIDE_AUTO;
     for (int i = 1; i < argc; i++) {
@@ -307,6 +354,8 @@ int sq_cmd_param(int argc, char **argv)
             out[OUT_SVG].path = argv[++i];
         } else if (!strcmp(a, "--domain-svg") && has) {
             out[OUT_DOMAIN_SVG].path = argv[++i];
+        } else if (!strcmp(a, "--diagnose") && has) {
+            diagnose = argv[++i];
         } else if (!strcmp(a, "--seed") && has) {
             if (!parse_u64(argv[++i], 0, UINT64_MAX, &seed)) {
                 fprintf(stderr, "seamquad param: --seed needs a non-negative integer, got '%s'\n",
@@ -455,6 +504,11 @@ int sq_cmd_param(int argc, char **argv)
     goto done;
 fail:
     fprintf(stderr, "seamquad param: error (%s): %s\n", stage, err.msg);
+    sq_param_cell cells[DIAG_CELLS];
+    uint32_t ncells = 0;
+    int diagnosed = 0;
+    if (diagnose && !strcmp(stage, "param") && err.code == SQ_ERR_SOLVER && strstr(err.msg, "not injective"))
+        diagnosed = diagnose_cells(&mesh, val, seed, &stats, guidance, diagnose, cells, &ncells);
     if (json) {
         printf("{\n  \"ok\": false,\n  ");
         sq_json_error(err.code, stage, err.msg);
@@ -466,6 +520,18 @@ fail:
                    stats.attempts, (unsigned long long)stats.seed_used, stats.guided ? "true" : "false",
                    stats.genus, stats.ncones, (unsigned long long)stats.quads_unpadded,
                    (unsigned long long)stats.quads_added, stats.chords, stats.cells);
+        if (diagnosed) {
+            printf(",\n  \"diagnosis\": {\"svg\": ");
+            sq_json_string(stdout, diagnose);
+            printf(", \"bad_cells\": %u, \"cells\": [", ncells);
+            for (uint32_t i = 0; i < ncells && i < DIAG_CELLS; i++)
+                printf("%s{\"bad\": %u, \"faces\": %u, \"rect\": [%.17g, %.17g, %.17g, %.17g], "
+                       "\"side_length\": [%.6g, %.6g, %.6g, %.6g], \"runs\": %u}",
+                       i ? ", " : "", cells[i].bad, cells[i].faces, cells[i].umin, cells[i].vmin, cells[i].umax,
+                       cells[i].vmax, cells[i].side_len[0], cells[i].side_len[1], cells[i].side_len[2],
+                       cells[i].side_len[3], cells[i].runs);
+            printf("]}");
+        }
         printf("\n}\n");
     }
     /* the command line was checked above: an argument error from the

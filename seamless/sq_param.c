@@ -35,6 +35,7 @@ void sq_param_free(sq_param *P)
     free(P->tri_uv);
     free(P->uv);
     free(P->he_seam);
+    free(P->he_cut);
     free(P->valence);
     if (P->domain) sq_domain_free(P->domain);
     if (P->tree) sq_cone_tree_free(P->tree);
@@ -1727,8 +1728,9 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
     P->tri = malloc(3 * (size_t)S->nf * sizeof *P->tri);
     P->tri_uv = malloc(3 * (size_t)S->nf * sizeof *P->tri_uv);
     P->he_seam = malloc(3 * (size_t)S->nf);
+    P->he_cut = malloc(3 * (size_t)S->nf);
     P->valence = malloc((size_t)S->nv_input * sizeof *P->valence);
-    if (!P->pos || !P->tri || !P->tri_uv || !P->he_seam || !P->valence)
+    if (!P->pos || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->valence)
         return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     memcpy(P->pos, S->pos, 3 * (size_t)S->nv * sizeof *P->pos);
     memcpy(P->valence, valence, (size_t)S->nv_input * sizeof *P->valence);
@@ -1787,6 +1789,7 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
         uint32_t kh = k, khn = corner_of[S->next[h]], kg = corner_of[g], kgn = corner_of[S->next[g]];
         int seam = P->tri_uv[kh] != P->tri_uv[kgn] || P->tri_uv[khn] != P->tri_uv[kg];
         P->he_seam[k] = (uint8_t)seam;
+        P->he_cut[k] = S->kind[h];
         if (seam && h < g) seams++;
     }
     free(ch);

@@ -113,6 +113,10 @@ typedef struct sq_param {
     uint8_t *he_seam;   /* 3 nf: 1 where the edge from corner i to i+1 of  */
                         /* a face is a seam (its two sides have different   */
                         /* UVs)                                            */
+    uint8_t *he_cut;    /* 3 nf: the edge from corner i to i+1 of a face is */
+                        /* 0 inside a cell, 1 on the cut (cut graph and    */
+                        /* cone tree), 2 on a chord (a cell side inside    */
+                        /* Omega); for diagnosis (sq_param_cells)          */
     int32_t *valence;   /* nv_input: the prescribed valences (4 = regular) */
     /* The combinatorial domain and Omega, kept for pictures
      * (sq_domain_write_svg, sq_omega_write_svg); opaque here. */
@@ -160,6 +164,38 @@ sq_status sq_param_write_obj(const char *path, const sq_param *P, sq_error *err)
 /* SVG of the UV layout: triangles (thin), seams coloured by transition,
  * cone points by valence. */
 sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err);
+
+/* Diagnosis of a map that failed its orientation check (built with
+ * sq_param_options.allow_flips; sq_param_cells.c): the cells of Omega on
+ * the surface (faces joined across edges with he_cut 0), those holding
+ * bad UV triangles (not positively oriented, exact predicate), worst
+ * first. Per cell: its rectangle in UV and the surface (3D) length of its
+ * boundary on each side of the rectangle: a surface cell whose sides
+ * differ wildly from the rectangle's, or that runs along one side twice,
+ * is what Tutte's map squeezes (docs/param.md, Status). */
+typedef struct sq_param_cell {
+    uint32_t faces, bad;         /* triangles, of them not positive      */
+    uint32_t first_bad;          /* a bad face                           */
+    double umin, vmin, umax, vmax; /* the rectangle                      */
+    double side_len[4];          /* 3D length on u = umin, v = vmin,     */
+                                 /* u = umax, v = vmax                   */
+    double other_len;            /* 3D length on no side (should be 0)   */
+    uint32_t runs;               /* maximal runs of one side along the   */
+                                 /* boundary (4 for a rectangle traced   */
+                                 /* once; more when a side folds)        */
+} sq_param_cell;
+
+/* Fills up to max cells with bad triangles (worst first) into cells; *n
+ * receives how many cells have bad triangles (may exceed max). Needs
+ * P->he_cut. */
+sq_status sq_param_bad_cells(const sq_param *P, sq_param_cell *cells, uint32_t max, uint32_t *n,
+                             sq_error *err);
+
+/* SVG of the given cells (from sq_param_bad_cells), each twice: on the
+ * surface (projected on its best-fitting plane) and in UV; bad triangles
+ * red, cut edges black, chords blue. Written atomically. */
+sq_status sq_param_write_cells_svg(const char *path, const sq_param *P, const sq_param_cell *cells,
+                                   uint32_t ncells, sq_error *err);
 
 #ifdef __cplusplus
 }

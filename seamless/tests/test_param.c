@@ -14,6 +14,7 @@
  *   (interior map not injective in doubles, or the Steiner budget); where
  *   the map is returned for diagnosis (allow_flips), the referee's topology,
  *   refinement and integer seam checks pass: only injectivity may fail. */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -26,6 +27,7 @@
 #include <cmocka.h>
 
 #include "sq_param.h"
+#include "sq_predicates.h"
 #include "sq_test_mesh.h"
 
 typedef struct model {
@@ -207,6 +209,69 @@ static void test_all_models_compatible(void **state)
     }
 }
 
+/* sq_param_bad_cells: on a map with flips (mpz/holes3 seed 8, kept with
+ * allow_flips) every bad triangle lies in a reported cell, each cell's
+ * rectangle has positive size and its boundary runs along its four sides;
+ * on a valid map (eight) there is none */
+static void test_bad_cells(void **state)
+{
+    (void)state;
+    model M;
+    load(&M, "mpz/holes3");
+    sq_param P;
+    sq_param_init(&P);
+    sq_param_stats st;
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.seed = 8;
+    opt.allow_flips = 1;
+    sq_error err = {0};
+    if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("holes3 seed 8: %s", err.msg);
+    uint32_t bad = 0;
+    for (uint32_t f = 0; f < P.nf; f++)
+        bad += sq_orient2d(P.uv + 2 * P.tri_uv[3 * f], P.uv + 2 * P.tri_uv[3 * f + 1], P.uv + 2 * P.tri_uv[3 * f + 2]) <= 0;
+    assert_true(bad > 0); /* if this seed ever passes, pick another failing one */
+    sq_param_cell cells[64];
+    uint32_t n = 0;
+    assert_int_equal(sq_param_bad_cells(&P, cells, 64, &n, &err), SQ_OK);
+    assert_true(n >= 1 && n <= 64);
+    uint32_t sum = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        assert_true(cells[i].bad >= 1 && cells[i].bad <= cells[i].faces);
+        if (i) assert_true(cells[i].bad <= cells[i - 1].bad);
+        assert_true(cells[i].umax > cells[i].umin && cells[i].vmax > cells[i].vmin);
+        /* Omega's cells are integer rectangles */
+        assert_true(cells[i].umin == floor(cells[i].umin) && cells[i].vmax == floor(cells[i].vmax));
+        assert_true(cells[i].runs >= 4);
+        for (int k = 0; k < 4; k++) assert_true(cells[i].side_len[k] > 0);
+        sum += cells[i].bad;
+    }
+    assert_int_equal(sum, bad);
+    char path[] = "/tmp/sq_test_cells_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(sq_param_write_cells_svg(path, &P, cells, n, &err), SQ_OK);
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    char buf[256] = {0};
+    assert_true(fread(buf, 1, sizeof buf - 1, fp) > 0);
+    fclose(fp);
+    unlink(path);
+    assert_non_null(strstr(buf, "<svg"));
+    sq_param_free(&P);
+    /* a valid map has no bad cell */
+    unload(&M);
+    load(&M, "mpz/eight");
+    opt.seed = 1;
+    opt.allow_flips = 0;
+    if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("eight: %s", err.msg);
+    assert_int_equal(sq_param_bad_cells(&P, cells, 64, &n, &err), SQ_OK);
+    assert_int_equal(n, 0);
+    sq_param_free(&P);
+    unload(&M);
+}
+
 static void test_rejects_bad_cones(void **state)
 {
     (void)state;
@@ -232,6 +297,7 @@ int main(void)
         cmocka_unit_test(test_eight_passes),
         cmocka_unit_test(test_cup_guided),
         cmocka_unit_test(test_all_models_compatible),
+        cmocka_unit_test(test_bad_cells),
         cmocka_unit_test(test_rejects_bad_cones),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
