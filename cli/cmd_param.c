@@ -69,7 +69,8 @@ static void help(FILE *f)
             "  --attempts N        tries before giving up (default %d): when a map fails\n"
             "                      its exact check (a flipped or degenerate UV triangle,\n"
             "                      too many Steiner vertices), try the next cut-graph\n"
-            "                      seed (attempt a uses seed N + a)\n"
+            "                      seed (attempt a uses seed N + a; N + a/2 when the\n"
+            "                      trees alternate, see --tree)\n"
             "  --guide MODE        geometric guidance (seed 9.2): auto (default) is on for\n"
             "                      genus >= 2, off below. on: the cut surface is laid out\n"
             "                      in the unit disk; the cones are taken from its centre\n"
@@ -85,6 +86,12 @@ static void help(FILE *f)
             "                      in UV, worst first, with their rectangle and the surface\n"
             "                      length of each side (also on stderr and in --json); the\n"
             "                      map itself is still not written\n"
+            "  --tree MODE         the cone tree with guidance (genus >= 2): surface\n"
+            "                      (default) chooses it on the surface by shortest paths\n"
+            "                      from the disk centre outwards and replicates it in the\n"
+            "                      domain (seed 9.4); domain takes the domain's own\n"
+            "                      shortest tree (passes less often, less distortion when\n"
+            "                      it does); alternate tries both on each cut-graph seed\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -203,8 +210,9 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            "%llu,\n  \"quads\": %llu,\n",
            s->cut_edges, (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
            (unsigned long long)(s->quads_unpadded + s->quads_added));
-    printf("  \"attempts\": %u,\n  \"seed_used\": %llu,\n  \"guided\": %s,\n", s->attempts,
-           (unsigned long long)s->seed_used, s->guided ? "true" : "false");
+    printf("  \"attempts\": %u,\n  \"seed_used\": %llu,\n  \"guided\": %s,\n  \"surface_tree\": %s,\n",
+           s->attempts, (unsigned long long)s->seed_used, s->guided ? "true" : "false",
+           s->surface_tree ? "true" : "false");
     printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
            "  \"seam_edges\": %u,\n",
            s->tree_edges, s->tree_segments, s->chords, s->cells, s->seam_edges);
@@ -249,8 +257,9 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
         }
         printf("; valence:count)\n");
     }
-    printf("attempt        %u (cut-graph seed %llu, %s)\n", s->attempts,
-           (unsigned long long)s->seed_used, s->guided ? "guided (seed 9.2)" : "unguided");
+    printf("attempt        %u (cut-graph seed %llu, %s)\n", s->attempts, (unsigned long long)s->seed_used,
+           !s->guided ? "unguided" : s->surface_tree ? "guided (seed 9.2), cone tree from the surface (seed 9.4)"
+                                                     : "guided (seed 9.2), cone tree from the domain");
     printf("cut graph      %u edges\n", s->cut_edges);
     printf("domain         %llu quads before padding + %llu padding = %llu\n",
            (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
@@ -301,6 +310,7 @@ static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, unsigned long
     opt.seed = failed->seed_used ? failed->seed_used : seed;
     opt.attempts = 1;
     opt.guidance = guidance;
+    opt.tree = failed->surface_tree ? SQ_TREE_SURFACE : SQ_TREE_DOMAIN;
     opt.allow_flips = 1;
     sq_param P;
     sq_param_init(&P);
@@ -335,7 +345,7 @@ int sq_cmd_param(int argc, char **argv)
     int json = 0, quiet = 0;
     const char *diagnose = NULL;
     unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS;
-    int guidance = SQ_GUIDE_AUTO;
+    int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -366,6 +376,15 @@ int sq_cmd_param(int argc, char **argv)
             if (!parse_u64(argv[++i], 1, 1000, &attempts)) {
                 fprintf(stderr, "seamquad param: --attempts needs an integer from 1 to 1000, got "
                                 "'%s'\n", argv[i]);
+                return SQ_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--tree") && has) {
+            const char *arg = argv[++i];
+            if (!strcmp(arg, "alternate")) tree = SQ_TREE_ALTERNATE;
+            else if (!strcmp(arg, "surface")) tree = SQ_TREE_SURFACE;
+            else if (!strcmp(arg, "domain")) tree = SQ_TREE_DOMAIN;
+            else {
+                fprintf(stderr, "seamquad param: --tree takes alternate, surface or domain, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--guide") && has) {
@@ -446,6 +465,7 @@ int sq_cmd_param(int argc, char **argv)
     opt.seed = seed;
     opt.attempts = (uint32_t)attempts;
     opt.guidance = guidance;
+    opt.tree = tree;
     opt.progress = on_progress;
     opt.progress_ctx = &ps;
     if (sq_param_build(&mesh, val, &opt, &P, &stats, &err)) goto fail;
@@ -515,10 +535,10 @@ fail:
         if (!strcmp(stage, "param"))
             /* how far the last attempt got (zeros where it did not) */
             printf(",\n  \"last_attempt\": {\"attempts\": %u, \"seed\": %llu, \"guided\": %s, "
-                   "\"genus\": %u, \"cones\": %u, \"quads_before_padding\": %llu, "
+                   "\"surface_tree\": %s, \"genus\": %u, \"cones\": %u, \"quads_before_padding\": %llu, "
                    "\"quads_added_by_padding\": %llu, \"chords\": %u, \"cells\": %u}",
                    stats.attempts, (unsigned long long)stats.seed_used, stats.guided ? "true" : "false",
-                   stats.genus, stats.ncones, (unsigned long long)stats.quads_unpadded,
+                   stats.surface_tree ? "true" : "false", stats.genus, stats.ncones, (unsigned long long)stats.quads_unpadded,
                    (unsigned long long)stats.quads_added, stats.chords, stats.cells);
         if (diagnosed) {
             printf(",\n  \"diagnosis\": {\"svg\": ");

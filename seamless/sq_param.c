@@ -397,7 +397,8 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     double t2 = now_s();
     progress(c, "omega", 0.2);
     st = SQ_ERR_SOLVER;
-    if (c->step_vertex) st = guided_tree(c);
+    if (c->step_vertex && c->opt->tree != SQ_TREE_DOMAIN) st = guided_tree(c);
+    if (st_out) st_out->surface_tree = st == SQ_OK;
     if (st == SQ_ERR_SOLVER) st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
     if (st == SQ_OK) st = sq_omega_build(c->D, c->T, c->O, err);
     if (st) goto done;
@@ -1957,9 +1958,14 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
     if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
     if (st) return st;
+    /* SQ_TREE_ALTERNATE with guidance (genus >= 2): each seed twice, the
+     * surface tree, then Q's tree */
+    const int alternate = o.guidance != SQ_GUIDE_OFF && sq_mesh_genus(m) >= 2 && o.tree == SQ_TREE_ALTERNATE;
     for (uint32_t a = 0; a < n; a++) {
-        o.seed = seed0 + a;
-        if (a > 0 && o.progress) o.progress(o.progress_ctx, "retry with another cut graph", 0.0);
+        o.seed = seed0 + (alternate ? a / 2 : a);
+        if (alternate) o.tree = a % 2 ? SQ_TREE_DOMAIN : SQ_TREE_SURFACE;
+        if (a > 0 && o.progress)
+            o.progress(o.progress_ctx, alternate && a % 2 ? "retry with the domain's cone tree" : "retry with another cut graph", 0.0);
         st = build_once(m, valence, &o, out, stats, err);
         stats->attempts = a + 1;
         stats->seed_used = o.seed;

@@ -60,7 +60,22 @@ typedef struct sq_param_options {
      * budget) are retried; the result is the first map that passes every
      * exact check. */
     uint32_t attempts;
+    /* The cone tree with guidance (genus >= 2), SQ_TREE_*: chosen on the
+     * surface and replicated in Q (seed 9.4), or Q's own shortest tree.
+     * Default SQ_TREE_SURFACE. */
+    int tree;
 } sq_param_options;
+
+/* Cone tree modes (sq_param_options.tree; only with guidance, genus >= 2):
+ *  SQ_TREE_SURFACE: the surface tree (seed 9.4), Q's tree only where the
+ *    surface tree cannot be replicated in Q. It passes most often (random
+ *    cone sets: 38 of 45, against 34 with Q's tree), but where both pass,
+ *    Q's tree gave the lower distortion (docs/param.md);
+ *  SQ_TREE_DOMAIN: Q's shortest tree, the surface following it;
+ *  SQ_TREE_ALTERNATE: attempts alternate the two on each cut-graph seed
+ *    (attempt a: seed + a / 2, the surface tree first); fewer seeds for the
+ *    same attempts (34 of 45). */
+enum { SQ_TREE_SURFACE = 0, SQ_TREE_DOMAIN = 1, SQ_TREE_ALTERNATE = 2 };
 
 /* Guidance modes (sq_param_options.guidance):
  *  SQ_GUIDE_AUTO: SQ_GUIDE_ON for genus >= 2, SQ_GUIDE_OFF below (where
@@ -97,6 +112,7 @@ typedef struct sq_param_stats {
     uint32_t attempts;                      /* attempts made (1 = first)      */
     uint64_t seed_used;                     /* cut-graph seed of the result   */
     int guided;                             /* 1: seed 9.2 guidance was used  */
+    int surface_tree;                       /* 1: the seed 9.4 surface tree   */
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
 } sq_param_stats;

@@ -105,6 +105,17 @@ else
   bad "--guide off: $(tail -1 "$tmp/cup_off.err")"
 fi
 
+# --- --tree domain: Q's own tree (the surface following it) passes mpz/cup
+# at seed 2, where the surface tree does not; less distortion there --------
+"$bin" param "$cup" --cones "$shared/data/mpz/cup_Th_hat" -o "$tmp/cup_dom.obj" --seed 2 --attempts 1 \
+  --tree domain --json --quiet >"$tmp/cup_dom.json" 2>"$tmp/cup_dom.err"
+if [ $? -eq 0 ] && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["guided"] and not j["surface_tree"] and j["seed_used"]==2, j' "$tmp/cup_dom.json" \
+    && python3 "$referee" "$cup" "$shared/data/mpz/cup_Th_hat" "$tmp/cup_dom.obj" --integer >"$tmp/cup_dom.ref" 2>&1; then
+  ok; echo "PASS --tree domain: mpz/cup seed 2: $(tail -1 "$tmp/cup_dom.ref")"
+else
+  bad "--tree domain: $(tail -1 "$tmp/cup_dom.err") $(cat "$tmp/cup_dom.json")"
+fi
+
 # --- --diagnose: mpz/holes3 seed 8 fails by a few dozen triangles; the
 # failing cells are drawn and reported, the map is still not written -------
 h3=$shared/data/mpz/holes3.obj
@@ -169,6 +180,7 @@ expect "unknown option" 2 "unknown option" -- "$knot" --cones "$knot_cones" -o "
 expect "bad --seed" 2 "seed" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --seed x
 expect "bad --attempts" 2 "attempts" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --attempts 0
 expect "bad --guide" 2 "guide" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --guide sometimes
+expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --tree random
 expect "two meshes" 2 "unexpected argument" -- "$knot" "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj"
 expect "same output twice" 2 "two outputs" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --svg "$tmp/e/x.obj"
 expect "missing cones file" 1 "no_such_cones" -- "$knot" --cones "$tmp/no_such_cones" -o "$tmp/e/x.obj"

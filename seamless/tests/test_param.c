@@ -148,8 +148,16 @@ static void test_cup_guided(void **state)
     opt.attempts = 2;
     s = sq_param_build(&M.m, M.val, &opt, &P, &st, &err);
     if (s) fail_msg("cup seeds 2-3: %s", err.msg);
-    assert_true(st.attempts == 2 && st.seed_used == 3);
+    assert_true(st.attempts == 2 && st.seed_used == 3 && st.surface_tree);
     assert_int_equal(sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err), SQ_OK);
+    sq_param_free(&P);
+    /* the trees alternating: seed 2 with the surface tree fails, seed 2
+     * with Q's own tree passes (attempt 2) */
+    opt.tree = SQ_TREE_ALTERNATE;
+    s = sq_param_build(&M.m, M.val, &opt, &P, &st, &err);
+    if (s) fail_msg("cup alternate: %s", err.msg);
+    assert_true(st.attempts == 2 && st.seed_used == 2 && !st.surface_tree);
+    assert_referee_passes(&M, &P, "cup");
     sq_param_free(&P);
     unload(&M);
 }
