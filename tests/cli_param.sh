@@ -116,6 +116,16 @@ else
   bad "--tree domain: $(tail -1 "$tmp/cup_dom.err") $(cat "$tmp/cup_dom.json")"
 fi
 
+# mpz/sculpt (genus 2, 30 cones) passes with Q's own tree at seed 20
+sc=$shared/data/mpz/sculpt.obj
+"$bin" param "$sc" --cones "$shared/data/mpz/sculpt_Th_hat" -o "$tmp/sculpt.obj" --seed 20 --attempts 1 \
+  --tree domain --quiet >/dev/null 2>"$tmp/sculpt.err"
+if [ $? -eq 0 ] && python3 "$referee" "$sc" "$shared/data/mpz/sculpt_Th_hat" "$tmp/sculpt.obj" --integer >"$tmp/sculpt.ref" 2>&1; then
+  ok; echo "PASS --tree domain: mpz/sculpt seed 20: $(tail -1 "$tmp/sculpt.ref")"
+else
+  bad "--tree domain: mpz/sculpt seed 20: $(tail -1 "$tmp/sculpt.err") $(tail -1 "$tmp/sculpt.ref" 2>/dev/null)"
+fi
+
 # --- --diagnose: mpz/holes3 seed 8 fails by a few dozen triangles; the
 # failing cells are drawn and reported, the map is still not written -------
 h3=$shared/data/mpz/holes3.obj
