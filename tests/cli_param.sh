@@ -126,6 +126,17 @@ else
   bad "--tree domain: mpz/sculpt seed 20: $(tail -1 "$tmp/sculpt.err") $(tail -1 "$tmp/sculpt.ref" 2>/dev/null)"
 fi
 
+h3=$shared/data/mpz/holes3.obj
+# mpz/holes3 (genus 3, 24 cones; one of the seed's Table-1 models) passes
+# with the surface tree at seed 111
+"$bin" param "$h3" --cones "$shared/data/mpz/holes3_Th_hat" -o "$tmp/holes3.obj" --seed 111 --attempts 1 \
+  --quiet >/dev/null 2>"$tmp/holes3.err"
+if [ $? -eq 0 ] && python3 "$referee" "$h3" "$shared/data/mpz/holes3_Th_hat" "$tmp/holes3.obj" --integer >"$tmp/holes3.ref" 2>&1; then
+  ok; echo "PASS mpz/holes3 seed 111: $(tail -1 "$tmp/holes3.ref")"
+else
+  bad "mpz/holes3 seed 111: $(tail -1 "$tmp/holes3.err") $(tail -1 "$tmp/holes3.ref" 2>/dev/null)"
+fi
+
 # --- --diagnose: mpz/holes3 seed 8 fails by a few dozen triangles; the
 # failing cells are drawn and reported, the map is still not written -------
 h3=$shared/data/mpz/holes3.obj
