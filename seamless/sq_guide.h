@@ -125,15 +125,17 @@ sq_status sq_guide_surface_tree(const sq_mesh *m, const sq_cut_graph *G, uint32_
  * nearest inner vertex of a side of G (of side `side` only, unless that is
  * SQ_NONE), entered from the cut disk's side of it. Out: vertex, side and
  * index (side_he[side_off[side] + index] leaves vertex); SQ_NONE when no
- * such vertex is reached. The path's vertices get tree_next towards the
- * cone. */
+ * such vertex is reached. path_next (may be NULL; may be tree_next itself
+ * to attach the path to the tree): every vertex of the path but the cone
+ * gets its neighbour towards the cone. */
 typedef struct sq_guide_root {
     uint32_t step, side; /* in (side: SQ_NONE for any); side also out */
     uint32_t vertex, index;
 } sq_guide_root;
 
 sq_status sq_guide_surface_root(const sq_mesh *m, const sq_cut_graph *G, uint32_t n, const uint32_t *cone,
-                                uint32_t *tree_next, sq_guide_root *root, sq_error *err);
+                                const uint32_t *tree_next, uint32_t *path_next, sq_guide_root *root,
+                                sq_error *err);
 
 /* The same tree in Q (seed 9.4: the surface paths "replicated as discrete
  * geodesic paths"): qv[j] is the cone of Q standing for step j. In step

@@ -308,7 +308,8 @@ static int in_left_sector(const sq_mesh *m, uint32_t h, uint32_t a, uint32_t y)
 }
 
 sq_status sq_guide_surface_root(const sq_mesh *m, const sq_cut_graph *G, uint32_t n, const uint32_t *cone,
-                                uint32_t *tree_next, sq_guide_root *root, sq_error *err)
+                                const uint32_t *tree_next, uint32_t *path_next, sq_guide_root *root,
+                                sq_error *err)
 {
     root->vertex = root->index = SQ_NONE;
     uint32_t want_side = root->side;
@@ -380,7 +381,8 @@ sq_status sq_guide_surface_root(const sq_mesh *m, const sq_cut_graph *G, uint32_
     if (st == SQ_OK && hit != SQ_NONE) {
         root->vertex = hit, root->side = from[hit];
         root->index = side_e[hit] - G->side_off[from[hit]];
-        for (uint32_t x = hit; par[x] != SQ_NONE; x = par[x]) tree_next[x] = par[x];
+        if (path_next)
+            for (uint32_t x = hit; par[x] != SQ_NONE; x = par[x]) path_next[x] = par[x];
     }
 done:
     free(blocked);

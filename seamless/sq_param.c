@@ -84,8 +84,8 @@ typedef struct ctx {
                            /* metapolygon step (seed 9.2, Algorithm 1)     */
     uint32_t *s_tree_next; /* m->nv: the surface tree (sq_guide_surface_tree) */
     uint32_t root_surface; /* the surface tree's root vertex on the cut    */
-    uint32_t root_cone;    /* its cone nearest the circle, where Q's root  */
-                           /* path starts (SQ_NONE: not guided)            */
+    uint32_t root_step;    /* the step whose cone (nearest the circle) Q's */
+                           /* root path starts from (SQ_NONE: not guided)  */
     uint32_t *q_branch;  /* Q->nv: seed 9.4 guided tree: the surface vertex */
                          /* where the surface tree branched for a regular  */
                          /* branch vertex of Q's tree; SQ_NONE elsewhere,  */
@@ -128,6 +128,26 @@ static uint32_t uv_add(ctx *c, double u, double v)
 
 /* Steiner vertex budget: beyond it the cut paths are refining the surface
  * without end (regions too narrow for the domain's combinatorics) */
+/* The UV index of the corner of face(h) at its origin: the vertex's own
+ * (v_uv, once the interior map has run; may be NULL before) off the cut,
+ * its sector's on the cut; SQ_NONE where there is none yet. */
+static uint32_t corner_uv(const ctx *c, const uint32_t *v_uv, uint32_t h)
+{
+    const sq_tsurf *S = &c->S;
+    uint32_t v = S->vert[h];
+    if (!S->v_ncut[v]) return v_uv ? v_uv[v] : SQ_NONE;
+    uint32_t sec = sq_tsurf_sector_of(S, h);
+    return sec == SQ_NONE ? SQ_NONE : c->sec_uv[sec];
+}
+
+/* Q's sides and corners against the cut graph's (sq_cut_graph_domain_offset:
+ * Q is read clockwise, the cut graph counterclockwise, shifted by r): the
+ * surface side standing for Q side qs, its inverse, and the surface corner
+ * standing for Q corner i. */
+static uint32_t surface_side_of_q(const ctx *c, uint32_t qs) { return c->k - 1 - (qs + c->r) % c->k; }
+static uint32_t q_side_of_surface(const ctx *c, uint32_t s) { return (2 * c->k - 1 - s - c->r % c->k) % c->k; }
+static uint32_t surface_corner_of_q(const ctx *c, uint32_t i) { return (c->k - (i + c->r) % c->k) % c->k; }
+
 static int over_budget(const ctx *c)
 {
     return c->S.nv > 10u * c->S.nv_input + 100000u;
@@ -245,21 +265,13 @@ static sq_status guided_tree(ctx *c)
     if (st == SQ_OK)
         st = sq_guide_surface_tree(c->m, &c->G, n, c->step_vertex, att, frac, side, sv, c->s_tree_next, c->err);
     /* the surface root path as the seed draws it (to the nearest side),
-     * on a copy of the tree: it tells Q where its root should be */
+     * not attached: it tells Q where its root should be */
     sq_guide_root root = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
-    uint32_t *tn = st == SQ_OK ? malloc(((size_t)c->m->nv + 1) * sizeof *tn) : NULL;
-    if (st == SQ_OK && !tn) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-    if (st == SQ_OK) {
-        memcpy(tn, c->s_tree_next, (size_t)c->m->nv * sizeof *tn);
-        st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, tn, &root, c->err);
-    }
-    free(tn);
-    const uint32_t k = c->k;
+    if (st == SQ_OK) st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, c->s_tree_next, NULL, &root, c->err);
     if (st == SQ_OK && root.side != SQ_NONE) {
         /* Q's root on the side of Q that the surface root's side stands
-         * for (cut_surface: surface side k - 1 - (qs + r) mod k, read the
-         * other way), near the same fraction of it */
-        uint32_t qs_side = (2 * k - 1 - root.side - c->r % k) % k;
+         * for, near the same fraction of it */
+        uint32_t qs_side = q_side_of_surface(c, root.side);
         uint32_t ns = c->G.side_off[root.side + 1] - c->G.side_off[root.side];
         double t_want = (1.0 - (double)root.index / (double)ns) * (double)c->D->side_len[qs_side];
         rcost = malloc(((size_t)Q->nv + 1) * sizeof *rcost);
@@ -270,21 +282,7 @@ static sq_status guided_tree(ctx *c)
             if (t > 0) rcost[Q->he_vert[h]] = fabs((double)t - t_want);
     }
     if (st == SQ_OK) st = sq_cone_tree_guided(Q, n, qv, att, frac, side, rs, rcost, qa, qs, qf, c->T, c->err);
-    if (st == SQ_OK) {
-        /* the surface root path to the side Q's root is on */
-        uint32_t qside = SQ_NONE;
-        for (uint32_t i = 0; i < k && qside == SQ_NONE; i++) {
-            uint32_t h = Q->v_he[c->D->corner_vert[i]];
-            for (uint32_t t = 0; t < c->D->side_len[i]; t++, h = Q->he_next[h])
-                if (Q->he_vert[h] == c->T->root) qside = i;
-        }
-        if (qside != SQ_NONE) {
-            root.side = k - 1 - (qside + c->r) % k;
-            st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, c->s_tree_next, &root, c->err);
-            if (st == SQ_OK && root.vertex != SQ_NONE) c->root_surface = root.vertex;
-        }
-        if (st == SQ_OK) c->root_cone = c->step_vertex[rs];
-    }
+    if (st == SQ_OK) c->root_step = rs;
     if (st == SQ_OK) {
         /* a regular branch vertex of Q's tree stands for the surface
          * vertex where the same path joined the surface tree, or, where
@@ -323,6 +321,20 @@ static sq_status guided_tree(ctx *c)
     free(rcost);
     free(frac);
     free(side);
+    return st;
+}
+
+/* After Omega (guided tree): the surface tree's root path to the surface
+ * side standing for the side of Q that Q's root lies on, attached to the
+ * surface tree; cut_surface puts the surface root where it ends. */
+static sq_status guided_root(ctx *c)
+{
+    const sq_omega *O = c->O;
+    if (O->root_pos == 0 || O->root_side >= c->k) return SQ_OK; /* a corner root: the genus-0 slit */
+    sq_guide_root root = {c->root_step, surface_side_of_q(c, O->root_side), SQ_NONE, SQ_NONE};
+    sq_status st = sq_guide_surface_root(c->m, &c->G, c->D->ncones, c->step_vertex, c->s_tree_next,
+                                         c->s_tree_next, &root, c->err);
+    if (st == SQ_OK && root.vertex != SQ_NONE) c->root_surface = root.vertex;
     return st;
 }
 
@@ -401,6 +413,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     if (st_out) st_out->surface_tree = st == SQ_OK;
     if (st == SQ_ERR_SOLVER) st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
     if (st == SQ_OK) st = sq_omega_build(c->D, c->T, c->O, err);
+    if (st == SQ_OK && c->s_tree_next) st = guided_root(c);
     if (st) goto done;
     double t3 = now_s();
     if (st_out) {
@@ -456,7 +469,7 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
     sq_cut_graph *G = &c->G;
     uint32_t k = c->k;
     for (uint32_t s = 0; s < k; s++) {
-        uint32_t i = (2 * k - 1 - s - c->r) % k; /* clockwise side k-1-s = Q side i + r */
+        uint32_t i = q_side_of_surface(c, s); /* clockwise side k-1-s = Q side i + r */
         for (uint32_t e = G->side_off[s]; e < G->side_off[s + 1]; e++) {
             uint32_t h = hmap[G->side_he[e]];
             if (!S->kind[h]) sq_tsurf_cut_edge(S, h, SQ_TS_SEAM, i, O->label_partner[i]);
@@ -471,12 +484,12 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
             return sq_error_set(c->err, SQ_ERR_INTERNAL, "cut graph walk disagrees at side edge %u", e);
     /* the root: a vertex inside surface side s_r (Q side root_side) */
     uint32_t qs = O->root_side;
-    uint32_t s_r = k - 1 - (qs + c->r) % k;
+    uint32_t s_r = surface_side_of_q(c, qs);
     uint32_t a = G->side_off[s_r], n = G->side_off[s_r + 1] - a;
     if (O->root_pos == 0) {
         /* the root is Q's corner qs = the start of counterclockwise side
          * (k - (qs + r)) mod k; no side is split (the genus-0 slit) */
-        uint32_t sc = (k - (qs + c->r) % k) % k;
+        uint32_t sc = surface_corner_of_q(c, qs);
         if (O->nlabels != k + 2 * c->T->nseg)
             return sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega splits a side at a corner root");
         *root_he = hmap[G->side_he[G->side_off[sc]]];
@@ -501,12 +514,12 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
         if (S->vert[side[e]] == c->root_surface) at = e;
     if (at != SQ_NONE) {
         ir = at; /* the surface tree's root path ends here */
-    } else if (c->root_cone != SQ_NONE) {
+    } else if (c->root_step != SQ_NONE) {
         /* seed 9.4 guided tree: any place on the side splits it validly;
          * the one nearest the cone Q's root path leaves from */
         double best = INFINITY;
         for (uint32_t e = 1; e < ns; e++) {
-            double d = sq_ts_dist(S, S->vert[side[e]], c->root_cone);
+            double d = sq_ts_dist(S, S->vert[side[e]], c->step_vertex[c->root_step]);
             if (d < best) best = d, ir = e;
         }
     }
@@ -599,7 +612,7 @@ static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domai
     for (uint32_t o = 0; o < k; o++) {
         cost[o] = 0;
         for (uint32_t i = 0; i < k; i++) {
-            double d = ang_diff(psi[(i + o) % k], c->surf_corner_angle[(k - (i + c->r) % k) % k]);
+            double d = ang_diff(psi[(i + o) % k], c->surf_corner_angle[surface_corner_of_q(c, i)]);
             cost[o] += d * d;
         }
         uint32_t j = o;
@@ -666,7 +679,7 @@ static sq_status targets_by_matching(ctx *c)
     }
     st = sq_guide_surface_disk(m, &c->G, v_xy, sang, c->err);
     if (st) goto done;
-    for (uint32_t i = 0; i < k; i++) qang[i] = sang[(k - (i + c->r) % k) % k];
+    for (uint32_t i = 0; i < k; i++) qang[i] = sang[surface_corner_of_q(c, i)];
     st = sq_guide_domain_disk(c->D, qang, q_xy, c->err);
     if (st) goto done;
     for (uint32_t h = 0; h < Q->nh; h++)
@@ -896,15 +909,10 @@ static sq_status replicate_tree(ctx *c, uint32_t root_he)
                 st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                 goto done;
             }
-            /* the route reads the mask of every regular vertex */
-            uint8_t *bmask = calloc(S->nv, 1);
-            if (!bmask) {
-                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-                goto done;
-            }
-            bmask[btgt] = 1;
-            st = sq_tsurf_route(S, it->sector, SQ_ROUTE_CONE, 4, bmask, tlen, SQ_NONE, &path, &npath, err);
-            free(bmask);
+            /* a regular input vertex as the route's one target */
+            only[btgt] = 1;
+            st = sq_tsurf_route(S, it->sector, SQ_ROUTE_CONE, 4, only, tlen, SQ_NONE, &path, &npath, err);
+            only[btgt] = 0;
             if (st == SQ_OK && sec_reserve(c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
             if (st == SQ_ERR_INTERNAL) st = SQ_OK, npath = 0; /* unreachable: a free branch vertex */
             if (st) goto done;
@@ -1472,8 +1480,7 @@ static sq_status tutte(ctx *c, uint32_t *v_uv)
             if (idx[w] != SQ_NONE) {
                 ri[nnz] = idx[v], cj[nnz] = idx[w], val[nnz] = -wt, nnz++;
             } else {
-                uint32_t sec = sq_tsurf_sector_of(S, S->twin[h]);
-                uint32_t u = sec == SQ_NONE ? SQ_NONE : c->sec_uv[sec];
+                uint32_t u = corner_uv(c, NULL, S->twin[h]);
                 if (u == SQ_NONE) {
                     st = sq_error_set(err, SQ_ERR_INTERNAL, "vertex %u on the cut has no UV in its sector", w);
                     break;
@@ -1515,13 +1522,11 @@ done:
 
 /* ---- step 7b: vertices moved into the kernels of their stars ---------- */
 
-/* The UV of the corner of face(h) at its origin. */
+/* The UV of the corner of face(h) at its origin (every corner has one
+ * once the interior map has run). */
 static const double *corner_xy(const ctx *c, const uint32_t *v_uv, uint32_t h)
 {
-    const sq_tsurf *S = &c->S;
-    uint32_t v = S->vert[h];
-    uint32_t u = S->v_ncut[v] ? c->sec_uv[sq_tsurf_sector_of(S, h)] : v_uv[v];
-    return c->uv + 2 * u;
+    return c->uv + 2 * (size_t)corner_uv(c, v_uv, h);
 }
 
 static int face_ok(const ctx *c, const uint32_t *v_uv, uint32_t f)
@@ -1746,11 +1751,7 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
     for (uint32_t k = 0; k < 3 * S->nf; k++) {
         uint32_t h = ch[k];
         uint32_t v = S->vert[h];
-        uint32_t u = v_uv[v];
-        if (u == SQ_NONE) {
-            uint32_t sec = sq_tsurf_sector_of(S, h);
-            u = c->sec_uv[sec];
-        }
+        uint32_t u = corner_uv(c, v_uv, h);
         if (u == SQ_NONE) {
             st = sq_error_set(c->err, SQ_ERR_INTERNAL, "corner %u of face %u (vertex %u) has no UV", k % 3,
                               k / 3, v);
@@ -1835,7 +1836,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     memset(&c, 0, sizeof c);
     c.m = m, c.opt = opt, c.err = err;
     c.keep_flips = opt->allow_flips;
-    c.root_cone = c.root_surface = SQ_NONE;
+    c.root_step = c.root_surface = SQ_NONE;
     c.S_valence = valence;
     sq_tsurf_init(&c.S);
     sq_cut_graph_init(&c.G);

@@ -8,7 +8,8 @@
  * rectangle, the surface length of each side, the picture on the surface
  * and in UV) is how such failures are understood (docs/param.md, Status).
  * The cells are recovered from the output alone: faces joined across edges
- * that are neither cut nor chord (P->he_cut). */
+ * that are neither cut nor chord (P->he_cut), on the halfedge mesh of the
+ * output's triangles (sq_param_mesh: halfedge c = corner c). */
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
@@ -17,6 +18,7 @@
 
 #include "sq_io.h"
 #include "sq_param.h"
+#include "sq_param_internal.h"
 #include "sq_predicates.h"
 
 static const double *uv_of(const sq_param *P, uint32_t corner) { return P->uv + 2 * (size_t)P->tri_uv[corner]; }
@@ -24,44 +26,6 @@ static const double *uv_of(const sq_param *P, uint32_t corner) { return P->uv + 
 static int face_bad(const sq_param *P, uint32_t f)
 {
     return sq_orient2d(uv_of(P, 3 * f), uv_of(P, 3 * f + 1), uv_of(P, 3 * f + 2)) <= 0;
-}
-
-/* corner -> the corner across its edge (corner i of f: the edge i -> i+1),
- * from a hash of the directed edges; SQ_NONE on a border (none here) */
-static uint32_t *edge_partners(const sq_param *P)
-{
-    size_t n = 3 * (size_t)P->nf, cap = 1;
-    while (cap < 2 * n) cap <<= 1;
-    uint32_t *key = malloc(cap * sizeof *key), *opp = malloc(n * sizeof *opp);
-    if (!key || !opp) {
-        free(key), free(opp);
-        return NULL;
-    }
-    for (size_t i = 0; i < cap; i++) key[i] = SQ_NONE;
-    for (size_t c = 0; c < n; c++) {
-        opp[c] = SQ_NONE;
-        uint32_t a = P->tri[c], b = P->tri[c - c % 3 + (c % 3 + 1) % 3];
-        uint64_t hsh = ((uint64_t)a * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)b * 0xC2B2AE3D27D4EB4Full);
-        size_t s = (size_t)(hsh >> 7) & (cap - 1);
-        while (key[s] != SQ_NONE) s = (s + 1) & (cap - 1);
-        key[s] = (uint32_t)c;
-    }
-    for (size_t c = 0; c < n; c++) {
-        uint32_t a = P->tri[c], b = P->tri[c - c % 3 + (c % 3 + 1) % 3];
-        /* the twin runs b -> a */
-        uint64_t hsh = ((uint64_t)b * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)a * 0xC2B2AE3D27D4EB4Full);
-        size_t s = (size_t)(hsh >> 7) & (cap - 1);
-        while (key[s] != SQ_NONE) {
-            uint32_t d = key[s];
-            if (P->tri[d] == b && P->tri[d - d % 3 + (d % 3 + 1) % 3] == a) {
-                opp[c] = d;
-                break;
-            }
-            s = (s + 1) & (cap - 1);
-        }
-    }
-    free(key);
-    return opp;
 }
 
 static int by_bad(const void *a, const void *b)
@@ -83,7 +47,7 @@ static int side_of_segment(const sq_param_cell *C, const double *p, const double
 
 /* labels every face with its cell (faces joined across uncut edges);
  * returns the number of cells, or SQ_NONE when out of memory */
-static uint32_t label_cells(const sq_param *P, const uint32_t *opp, uint32_t *cell)
+static uint32_t label_cells(const sq_param *P, const sq_mesh *m, uint32_t *cell)
 {
     uint32_t *stack = malloc(((size_t)P->nf + 1) * sizeof *stack);
     if (!stack) return SQ_NONE;
@@ -97,8 +61,8 @@ static uint32_t label_cells(const sq_param *P, const uint32_t *opp, uint32_t *ce
         while (sp) {
             uint32_t f = stack[--sp];
             for (uint32_t i = 0; i < 3; i++) {
-                uint32_t c = 3 * f + i, d = opp[c];
-                if (P->he_cut[c] || d == SQ_NONE || cell[d / 3] != SQ_NONE) continue;
+                uint32_t c = 3 * f + i, d = m->he_twin[c];
+                if (P->he_cut[c] || cell[d / 3] != SQ_NONE) continue;
                 cell[d / 3] = nc;
                 stack[sp++] = d / 3;
             }
@@ -115,10 +79,12 @@ sq_status sq_param_bad_cells(const sq_param *P, sq_param_cell *cells, uint32_t m
     *n = 0;
     if (!P || !P->he_cut || !P->tri || !P->tri_uv || !P->uv || !P->pos)
         return sq_error_set(err, SQ_ERR_ARGUMENT, "bad cells: the parametrization has no cut kinds");
-    uint32_t *opp = edge_partners(P), *cell = malloc(((size_t)P->nf + 1) * sizeof *cell);
+    sq_mesh m;
+    sq_status st = sq_param_mesh(P, "bad cells", &m, err);
+    if (st) return st;
+    uint32_t *cell = malloc(((size_t)P->nf + 1) * sizeof *cell);
     sq_param_cell *all = NULL;
-    sq_status st = SQ_OK;
-    uint32_t nc = opp && cell ? label_cells(P, opp, cell) : SQ_NONE;
+    uint32_t nc = cell ? label_cells(P, &m, cell) : SQ_NONE;
     if (nc != SQ_NONE) all = calloc((size_t)nc + 1, sizeof *all);
     if (nc == SQ_NONE || !all) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
@@ -152,7 +118,7 @@ sq_status sq_param_bad_cells(const sq_param *P, sq_param_cell *cells, uint32_t m
             uint32_t c = 3 * f + i;
             if (!P->he_cut[c]) continue;
             sq_param_cell *C = &all[cell[f]];
-            uint32_t cn = c - c % 3 + (c % 3 + 1) % 3;
+            uint32_t cn = m.he_next[c];
             const double *a = P->pos + 3 * (size_t)P->tri[c], *b = P->pos + 3 * (size_t)P->tri[cn];
             double len = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
             int sd = side_of_segment(C, uv_of(P, c), uv_of(P, cn));
@@ -164,13 +130,10 @@ sq_status sq_param_bad_cells(const sq_param *P, sq_param_cell *cells, uint32_t m
             int sd2 = 4;
             while (guard++ < 1000) {
                 if (P->he_cut[g]) {
-                    uint32_t gn = g - g % 3 + (g % 3 + 1) % 3;
-                    sd2 = side_of_segment(C, uv_of(P, g), uv_of(P, gn));
+                    sd2 = side_of_segment(C, uv_of(P, g), uv_of(P, m.he_next[g]));
                     break;
                 }
-                uint32_t d = opp[g];
-                if (d == SQ_NONE) break;
-                g = d - d % 3 + (d % 3 + 1) % 3; /* the next edge out of the head in the next face */
+                g = m.he_next[m.he_twin[g]]; /* the next edge out of the head, one face on */
             }
             if (sd2 != sd) C->runs++;
         }
@@ -181,7 +144,7 @@ sq_status sq_param_bad_cells(const sq_param *P, sq_param_cell *cells, uint32_t m
     for (uint32_t i = 0; i < nbad && i < max; i++) cells[i] = all[i];
     *n = nbad;
 done:
-    free(opp);
+    sq_mesh_free(&m);
     free(cell);
     free(all);
     return st;
@@ -227,10 +190,12 @@ sq_status sq_param_write_cells_svg(const char *path, const sq_param *P, const sq
                                    uint32_t ncells, sq_error *err)
 {
     if (!path || !P || !P->he_cut) return sq_error_set(err, SQ_ERR_ARGUMENT, "cells SVG: no path or no cut kinds");
-    uint32_t *opp = edge_partners(P), *cell = malloc(((size_t)P->nf + 1) * sizeof *cell);
+    sq_mesh m;
+    sq_status st = sq_param_mesh(P, path, &m, err);
+    if (st) return st;
+    uint32_t *cell = malloc(((size_t)P->nf + 1) * sizeof *cell);
     double *xy3 = malloc(6 * (size_t)P->nf * sizeof *xy3), *xyu = malloc(6 * (size_t)P->nf * sizeof *xyu);
-    sq_status st = SQ_OK;
-    if (!opp || !cell || !xy3 || !xyu || label_cells(P, opp, cell) == SQ_NONE) {
+    if (!cell || !xy3 || !xyu || label_cells(P, &m, cell) == SQ_NONE) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -295,7 +260,7 @@ sq_status sq_param_write_cells_svg(const char *path, const sq_param *P, const sq
     }
     st = sq_atomic_commit(&af, err);
 done:
-    free(opp);
+    sq_mesh_free(&m);
     free(cell);
     free(xy3);
     free(xyu);

@@ -36,6 +36,7 @@
 #include "sq_io.h"
 #include "sq_mesh.h"
 #include "sq_param.h"
+#include "sq_param_internal.h"
 #include "sq_predicates.h"
 
 #define HALF_PI 1.57079632679489661923
@@ -129,9 +130,7 @@ static sq_status check_arrays(const sq_param *P, const char *who, sq_error *err)
     return SQ_OK;
 }
 
-/* The halfedge mesh of P's triangles (halfedge c starts at corner c: face
- * c/3, corner c%3). Topology only: closed, manifold, oriented, connected. */
-static sq_status build_mesh(const sq_param *P, const char *who, sq_mesh *m, sq_error *err)
+sq_status sq_param_mesh(const sq_param *P, const char *who, sq_mesh *m, sq_error *err)
 {
     memset(m, 0, sizeof *m);
     uint32_t *off = malloc(((size_t)P->nf + 1) * sizeof *off);
@@ -315,7 +314,7 @@ sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err)
                 return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: vertex %" PRIu32 " has valence %" PRId32,
                                     who, v, P->valence[v]);
     sq_mesh m;
-    st = build_mesh(P, who, &m, err);
+    st = sq_param_mesh(P, who, &m, err);
     if (st) return st;
     uint32_t *owner = NULL;
     double *angle = NULL;
@@ -583,7 +582,7 @@ sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err)
     sq_status st = check_arrays(P, path, err);
     if (st) return st;
     sq_mesh m;
-    st = build_mesh(P, path, &m, err);
+    st = sq_param_mesh(P, path, &m, err);
     if (st) return st;
     seam_curves C;
     uint8_t *seen = NULL;

@@ -366,7 +366,7 @@ static int relax(route_ctx *R, uint32_t from, uint32_t to, double d_from)
 
 static int is_target_cone(const sq_tsurf *S, uint32_t v, int32_t valence, const uint8_t *cone_free)
 {
-    return !S->v_ncut[v] && S->valence[v] == valence && cone_free && cone_free[v];
+    return v < S->nv_input && !S->v_ncut[v] && S->valence[v] == valence && cone_free && cone_free[v];
 }
 
 /* An edge a route may cross in its middle: uncut, both ends blocked, no end
@@ -620,7 +620,7 @@ sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind
     } else if (kind == SQ_ROUTE_CONE) {
         for (uint32_t h = 0; h < S->nh; h++) {
             uint32_t v = S->vert[h];
-            if (!S->v_ncut[v] && S->valence[v] == target_valence && cone_free[v]) goal[S->face[h]] = 1;
+            if (is_target_cone(S, v, target_valence, cone_free)) goal[S->face[h]] = 1;
         }
     }
     /* start faces: the sector's fan; the first crossing is the edge
@@ -649,9 +649,7 @@ sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind
             uint32_t opp = S->vert[sq_ts_prev(S, pred[f])];
             int hit = 0;
             if (kind == SQ_ROUTE_SECTOR && goal[f] && opp == S->vert[target_sector]) hit = 1;
-            if (kind == SQ_ROUTE_CONE && !S->v_ncut[opp] && S->valence[opp] == target_valence &&
-                cone_free[opp])
-                hit = 1;
+            if (kind == SQ_ROUTE_CONE && is_target_cone(S, opp, target_valence, cone_free)) hit = 1;
             if (kind == SQ_ROUTE_FREE && d >= target_length) hit = 1;
             if (hit) {
                 endf = f;

@@ -113,9 +113,10 @@ int64_t sq_tsurf_open_vertex(sq_tsurf *S, uint32_t v);
 
 /* Route kinds for sq_tsurf_route. */
 typedef enum sq_route_target {
-    SQ_ROUTE_CONE,   /* any cone off the cut with valence == target_valence */
-                     /* and cone_free[v] set (read only for vertices of     */
-                     /* that valence, so it may cover the input's vertices) */
+    SQ_ROUTE_CONE,   /* any input vertex off the cut with valence ==        */
+                     /* target_valence and cone_free[v] set (cone_free has  */
+                     /* nv_input entries; valence 4 names one regular input */
+                     /* vertex, e.g. where a tree should branch)            */
     SQ_ROUTE_FREE,   /* a vertex off the cut, not a cone, reached at a       */
                      /* distance >= target_length (or the farthest one)      */
     SQ_ROUTE_SECTOR  /* the origin of target_sector, entered through an     */

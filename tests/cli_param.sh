@@ -116,26 +116,25 @@ else
   bad "--tree domain: $(tail -1 "$tmp/cup_dom.err") $(cat "$tmp/cup_dom.json")"
 fi
 
-# mpz/sculpt (genus 2, 30 cones) passes with Q's own tree at seed 20
-sc=$shared/data/mpz/sculpt.obj
-"$bin" param "$sc" --cones "$shared/data/mpz/sculpt_Th_hat" -o "$tmp/sculpt.obj" --seed 20 --attempts 1 \
-  --tree domain --quiet >/dev/null 2>"$tmp/sculpt.err"
-if [ $? -eq 0 ] && python3 "$referee" "$sc" "$shared/data/mpz/sculpt_Th_hat" "$tmp/sculpt.obj" --integer >"$tmp/sculpt.ref" 2>&1; then
-  ok; echo "PASS --tree domain: mpz/sculpt seed 20: $(tail -1 "$tmp/sculpt.ref")"
-else
-  bad "--tree domain: mpz/sculpt seed 20: $(tail -1 "$tmp/sculpt.err") $(tail -1 "$tmp/sculpt.ref" 2>/dev/null)"
-fi
-
-h3=$shared/data/mpz/holes3.obj
-# mpz/holes3 (genus 3, 24 cones; one of the seed's Table-1 models) passes
-# with the surface tree at seed 111
-"$bin" param "$h3" --cones "$shared/data/mpz/holes3_Th_hat" -o "$tmp/holes3.obj" --seed 111 --attempts 1 \
-  --quiet >/dev/null 2>"$tmp/holes3.err"
-if [ $? -eq 0 ] && python3 "$referee" "$h3" "$shared/data/mpz/holes3_Th_hat" "$tmp/holes3.obj" --integer >"$tmp/holes3.ref" 2>&1; then
-  ok; echo "PASS mpz/holes3 seed 111: $(tail -1 "$tmp/holes3.ref")"
-else
-  bad "mpz/holes3 seed 111: $(tail -1 "$tmp/holes3.err") $(tail -1 "$tmp/holes3.ref" 2>/dev/null)"
-fi
+# passes_at MODEL SEED [OPTIONS...]: mpz/MODEL at that seed, one attempt,
+# gives a map the referee passes with --integer
+passes_at() {
+  local name=$1 seed=$2
+  shift 2
+  local mesh=$shared/data/mpz/$name.obj cones=$shared/data/mpz/${name}_Th_hat out=$tmp/at_$name
+  "$bin" param "$mesh" --cones "$cones" -o "$out.obj" --seed "$seed" --attempts 1 --quiet "$@" \
+    >/dev/null 2>"$out.err"
+  if [ $? -eq 0 ] && python3 "$referee" "$mesh" "$cones" "$out.obj" --integer >"$out.ref" 2>&1; then
+    ok; echo "PASS mpz/$name seed $seed $*: $(tail -1 "$out.ref")"
+  else
+    bad "mpz/$name seed $seed $*: $(tail -1 "$out.err") $(tail -1 "$out.ref" 2>/dev/null)"
+  fi
+}
+# mpz/sculpt (genus 2, 30 cones) passes with Q's own tree at seed 20;
+# mpz/holes3 (genus 3, 24 cones; one of the seed's Table-1 models) with
+# the surface tree at seed 111
+passes_at sculpt 20 --tree domain
+passes_at holes3 111
 
 # --- --diagnose: mpz/holes3 seed 8 fails by a few dozen triangles; the
 # failing cells are drawn and reported, the map is still not written -------

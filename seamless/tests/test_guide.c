@@ -417,7 +417,7 @@ static void test_surface_tree(void **state)
             assert_true(joined >= n / 2);
             /* the root path, to any side, then to a named one */
             sq_guide_root root = {(uint32_t)(rng() % n), SQ_NONE, SQ_NONE, SQ_NONE};
-            assert_int_equal(sq_guide_surface_root(&m, &G, n, cv, nx, &root, &err), SQ_OK);
+            assert_int_equal(sq_guide_surface_root(&m, &G, n, cv, nx, nx, &root, &err), SQ_OK);
             if (root.vertex != SQ_NONE) {
                 assert_true(on_cut[root.vertex]);
                 assert_true(root.side < G.pattern.k);
@@ -434,7 +434,7 @@ static void test_surface_tree(void **state)
             }
             sq_guide_root r2 = {root.step, (root.side == SQ_NONE ? 0 : root.side + 1) % G.pattern.k, SQ_NONE, SQ_NONE};
             uint32_t want = r2.side;
-            assert_int_equal(sq_guide_surface_root(&m, &G, n, cv, nx, &r2, &err), SQ_OK);
+            assert_int_equal(sq_guide_surface_root(&m, &G, n, cv, nx, nx, &r2, &err), SQ_OK);
             if (r2.vertex != SQ_NONE) {
                 assert_int_equal(r2.side, want);
                 assert_int_equal(m.he_vert[G.side_he[G.side_off[r2.side] + r2.index]], r2.vertex);
