@@ -80,6 +80,12 @@ static void help(FILE *f)
             "                      angles (genus 0 and 1: only the cone matching). off: Q\n"
             "                      with the fewest quads, each cone of Q given the\n"
             "                      nearest free surface cone as the tree reaches it\n"
+            "  --refine N          refinement rounds per attempt (default %d): when some\n"
+            "                      UV triangles come out flipped or flat (Tutte's map of\n"
+            "                      a cell squeezed below double precision), the cells of\n"
+            "                      Omega holding them are halved by more chords and the\n"
+            "                      map is rebuilt on the same cut graph; each round adds\n"
+            "                      Steiner vertices. 0: none\n"
             "  --diagnose OUT.svg  when the map fails its orientation check: the last\n"
             "                      attempt is rebuilt keeping its flips, and the cells of\n"
             "                      Omega holding bad triangles are drawn on the surface and\n"
@@ -111,7 +117,7 @@ static void help(FILE *f)
             "      --svg helmet.uv.svg --domain-svg helmet.omega.svg\n"
             "  python3 ../shared/tools/check_param.py ../shared/data/mpz/helmet.obj \\\n"
             "      ../shared/data/mpz/helmet_Th_hat helmet.param.obj --integer\n",
-            SQ_PARAM_CLI_ATTEMPTS);
+            SQ_PARAM_CLI_ATTEMPTS, SQ_PARAM_REFINE);
 }
 
 typedef struct progress_state {
@@ -213,6 +219,7 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
     printf("  \"attempts\": %u,\n  \"seed_used\": %llu,\n  \"guided\": %s,\n  \"surface_tree\": %s,\n",
            s->attempts, (unsigned long long)s->seed_used, s->guided ? "true" : "false",
            s->surface_tree ? "true" : "false");
+    printf("  \"refine_rounds\": %u,\n  \"cells_halved\": %u,\n", s->rounds, s->cells_refined);
     printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
            "  \"seam_edges\": %u,\n",
            s->tree_edges, s->tree_segments, s->chords, s->cells, s->seam_edges);
@@ -266,6 +273,9 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
            (unsigned long long)(s->quads_unpadded + s->quads_added));
     printf("cone tree      %u edges in %u segments; Omega cut into %u rectangles by %u chords\n",
            s->tree_edges, s->tree_segments, s->cells, s->chords);
+    if (s->rounds)
+        printf("refinement     %u rounds: %u cells with bad triangles halved (step 7c)\n", s->rounds,
+               s->cells_refined);
     printf("output         %u vertices (%u Steiner), %u faces, %u UV points, %u seam edges\n",
            s->verts_out, s->steiner, s->faces_out, s->nuv, s->seam_edges);
     printf("distortion     symmetric Dirichlet mean %.4g max %.4g; conformal ratio mean %.4g "
@@ -302,7 +312,8 @@ static int parse_u64(const char *arg, unsigned long long lo, unsigned long long 
  * flips; the cells with bad triangles reported on stderr and drawn. Returns
  * 1 when the picture was written. */
 static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, unsigned long long seed,
-                          const sq_param_stats *failed, int guidance, const char *path, sq_param_cell *cells,
+                          const sq_param_stats *failed, int guidance, uint32_t refine, const char *path,
+                          sq_param_cell *cells,
                           uint32_t *ncells)
 {
     sq_param_options opt;
@@ -311,6 +322,7 @@ static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, unsigned long
     opt.attempts = 1;
     opt.guidance = guidance;
     opt.tree = failed->surface_tree ? SQ_TREE_SURFACE : SQ_TREE_DOMAIN;
+    opt.refine = refine;
     opt.allow_flips = 1;
     sq_param P;
     sq_param_init(&P);
@@ -344,7 +356,7 @@ int sq_cmd_param(int argc, char **argv)
     memset(out, 0, sizeof out);
     int json = 0, quiet = 0;
     const char *diagnose = NULL;
-    unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS;
+    unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS, refine = SQ_PARAM_REFINE;
     int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -376,6 +388,12 @@ int sq_cmd_param(int argc, char **argv)
             if (!parse_u64(argv[++i], 1, 1000, &attempts)) {
                 fprintf(stderr, "seamquad param: --attempts needs an integer from 1 to 1000, got "
                                 "'%s'\n", argv[i]);
+                return SQ_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--refine") && has) {
+            if (!parse_u64(argv[++i], 0, 64, &refine)) {
+                fprintf(stderr, "seamquad param: --refine needs an integer from 0 to 64, got '%s'\n",
+                        argv[i]);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--tree") && has) {
@@ -464,6 +482,7 @@ int sq_cmd_param(int argc, char **argv)
     sq_param_options_default(&opt);
     opt.seed = seed;
     opt.attempts = (uint32_t)attempts;
+    opt.refine = (uint32_t)refine;
     opt.guidance = guidance;
     opt.tree = tree;
     opt.progress = on_progress;
@@ -528,7 +547,7 @@ fail:
     uint32_t ncells = 0;
     int diagnosed = 0;
     if (diagnose && !strcmp(stage, "param") && err.code == SQ_ERR_SOLVER && strstr(err.msg, "not injective"))
-        diagnosed = diagnose_cells(&mesh, val, seed, &stats, guidance, diagnose, cells, &ncells);
+        diagnosed = diagnose_cells(&mesh, val, seed, &stats, guidance, (uint32_t)refine, diagnose, cells, &ncells);
     if (json) {
         printf("{\n  \"ok\": false,\n  ");
         sq_json_error(err.code, stage, err.msg);

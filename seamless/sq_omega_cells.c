@@ -26,6 +26,14 @@
  * both ends, phase 2 the rest; sectors are always recomputed from the
  * current chord set.
  *
+ * Phase 3 (on request: max_side, face_limit) halves long cells: a chord
+ * along the grid line nearest the middle of a cell's longer side, from
+ * one side to the opposite (a T-junction at both ends, possibly on earlier
+ * chords), again until every cell fits its limit. Such a chord splits a
+ * rectangle into two rectangles, so the argument above still holds. The
+ * surface stage asks for it where Tutte's map of a cell failed
+ * (sq_param.c, step 7c).
+ *
  * Rotation around a vertex v (faces counterclockwise, sq_metapolygon.h):
  * for a face halfedge h leaving v, twin(prev(h)) is the next outgoing
  * halfedge counterclockwise (across face(h)), next(twin(h)) the next one
@@ -242,7 +250,100 @@ static uint32_t best_chord(const builder *B, uint32_t v, uint32_t *bound, uint32
     return best;
 }
 
-sq_status sq_omega_cells_build(const sq_omega *O, sq_omega_cells *C, sq_error *err)
+/* Cells: faces joined across edges that are neither boundary nor chord;
+ * their boxes in the layout. */
+static sq_status label_cells(const sq_omega *O, const builder *B, sq_omega_cells *C,
+                             uint32_t *stack, sq_error *err)
+{
+    const sq_metapolygon *P = &O->cut;
+    for (uint32_t f = 0; f < P->nf; f++) C->f_cell[f] = SQ_NONE;
+    uint32_t nc = 0;
+    for (uint32_t f0 = 0; f0 < P->nf; f0++) {
+        if (C->f_cell[f0] != SQ_NONE) continue;
+        uint32_t sp = 0;
+        C->f_cell[f0] = nc;
+        stack[sp++] = f0;
+        while (sp) {
+            uint32_t f = stack[--sp], g = P->f_he[f];
+            for (uint32_t e = 0; e < 4; e++, g = P->he_next[g]) {
+                if (B->cut[g]) continue;
+                uint32_t n = P->he_face[P->he_twin[g]];
+                if (C->f_cell[n] == SQ_NONE) C->f_cell[n] = nc, stack[sp++] = n;
+            }
+        }
+        nc++;
+    }
+    C->ncells = nc;
+    free(C->cell_box);
+    C->cell_box = malloc(4 * (size_t)(nc ? nc : 1) * sizeof *C->cell_box);
+    if (!C->cell_box) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    for (uint32_t c = 0; c < nc; c++) {
+        C->cell_box[4 * c] = C->cell_box[4 * c + 1] = INT64_MAX;
+        C->cell_box[4 * c + 2] = C->cell_box[4 * c + 3] = INT64_MIN;
+    }
+    for (uint32_t f = 0; f < P->nf; f++) {
+        int64_t *b = C->cell_box + 4 * (size_t)C->f_cell[f];
+        uint32_t g = P->f_he[f];
+        for (uint32_t e = 0; e < 4; e++, g = P->he_next[g]) {
+            int64_t x = O->xy[2 * (size_t)P->he_vert[g]], y = O->xy[2 * (size_t)P->he_vert[g] + 1];
+            if (x < b[0]) b[0] = x;
+            if (y < b[1]) b[1] = y;
+            if (x > b[2]) b[2] = x;
+            if (y > b[3]) b[3] = y;
+        }
+    }
+    return SQ_OK;
+}
+
+/* Phase 3: every cell wider or taller than its limit (max_side if not 0,
+ * and face_limit of each of its quads if given) is halved by a chord
+ * across its longer dimension (the grid line nearest its middle), until
+ * none is. The chord leaves the cell's side at a straight (two-quad)
+ * sector and runs to the opposite side: a cell is a rectangle, so the
+ * grid line through its inside meets no other cut first. */
+static sq_status split_cells(const sq_omega *O, builder *B, sq_omega_cells *C, uint32_t max_side,
+                             const uint32_t *face_limit, uint32_t *stack, uint32_t *pick,
+                             uint32_t *lim, sq_error *err)
+{
+    const sq_metapolygon *P = &O->cut;
+    for (;;) {
+        sq_status st = label_cells(O, B, C, stack, err);
+        if (st) return st;
+        uint32_t nc = C->ncells, nsplit = 0;
+        for (uint32_t c = 0; c < nc; c++) pick[c] = SQ_NONE, lim[c] = max_side ? max_side : UINT32_MAX;
+        if (face_limit)
+            for (uint32_t f = 0; f < P->nf; f++)
+                if (face_limit[f] < lim[C->f_cell[f]]) lim[C->f_cell[f]] = face_limit[f] ? face_limit[f] : 1;
+        /* the halfedge leaving the middle of the bottom (or left) side of
+         * the cell, perpendicular to it, inside the cell */
+        for (uint32_t f = 0; f < P->nf; f++) {
+            uint32_t c = C->f_cell[f];
+            const int64_t *b = C->cell_box + 4 * (size_t)c;
+            int64_t w = b[2] - b[0], hgt = b[3] - b[1];
+            if (pick[c] != SQ_NONE || (w <= (int64_t)lim[c] && hgt <= (int64_t)lim[c])) continue;
+            int vertical = w >= hgt; /* split across x: a vertical chord */
+            int64_t xm = b[0] + w / 2, ym = b[1] + hgt / 2;
+            uint32_t g = P->f_he[f];
+            for (uint32_t e = 0; e < 4; e++, g = P->he_next[g]) {
+                uint32_t a = P->he_vert[g], d = head(P, g);
+                const int64_t *pa = O->xy + 2 * (size_t)a, *pd = O->xy + 2 * (size_t)d;
+                int ok = vertical ? (pa[0] == xm && pd[0] == xm && pa[1] == b[1] && pd[1] == b[1] + 1)
+                                  : (pa[1] == ym && pd[1] == ym && pa[0] == b[0] && pd[0] == b[0] + 1);
+                if (ok && !B->cut[g]) {
+                    pick[c] = g;
+                    nsplit++;
+                    break;
+                }
+            }
+        }
+        if (nsplit == 0) return SQ_OK;
+        for (uint32_t c = 0; c < nc; c++)
+            if (pick[c] != SQ_NONE && (st = add_chord(B, pick[c], err))) return st;
+    }
+}
+
+sq_status sq_omega_cells_build(const sq_omega *O, uint32_t max_side, const uint32_t *face_limit,
+                               sq_omega_cells *C, sq_error *err)
 {
     sq_omega_cells_free(C);
     const sq_metapolygon *P = &O->cut;
@@ -250,11 +351,12 @@ sq_status sq_omega_cells_build(const sq_omega *O, sq_omega_cells *C, sq_error *e
     builder B = {P, malloc(nv1), calloc(nv1, 1), calloc(nh1, 1), C, 0, 0};
     uint32_t *bverts = malloc(nv1 * sizeof *bverts);
     uint32_t *bound = NULL, *size = NULL, *stack = malloc(nf1 * sizeof *stack);
+    uint32_t *pick = malloc(nf1 * sizeof *pick), *lim = malloc(nf1 * sizeof *lim);
     C->chord_he = malloc(nh1 * sizeof *C->chord_he);
     C->he_chord = calloc(nh1, 1);
     C->f_cell = malloc(nf1 * sizeof *C->f_cell);
     sq_status st = SQ_OK;
-    if (!B.on_bnd || !B.on_chord || !B.cut || !bverts || !stack || !C->chord_he ||
+    if (!B.on_bnd || !B.on_chord || !B.cut || !bverts || !stack || !pick || !lim || !C->chord_he ||
         !C->he_chord || !C->f_cell) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
@@ -310,45 +412,9 @@ sq_status sq_omega_cells_build(const sq_omega *O, sq_omega_cells *C, sq_error *e
             if ((st = add_chord(&B, c, err))) goto done;
     }
 
-    /* cells: faces joined across edges that are neither boundary nor chord */
-    for (uint32_t f = 0; f < P->nf; f++) C->f_cell[f] = SQ_NONE;
-    uint32_t nc = 0;
-    for (uint32_t f0 = 0; f0 < P->nf; f0++) {
-        if (C->f_cell[f0] != SQ_NONE) continue;
-        uint32_t sp = 0;
-        C->f_cell[f0] = nc;
-        stack[sp++] = f0;
-        while (sp) {
-            uint32_t f = stack[--sp], g = P->f_he[f];
-            for (uint32_t e = 0; e < 4; e++, g = P->he_next[g]) {
-                if (B.cut[g]) continue;
-                uint32_t n = P->he_face[P->he_twin[g]];
-                if (C->f_cell[n] == SQ_NONE) C->f_cell[n] = nc, stack[sp++] = n;
-            }
-        }
-        nc++;
-    }
-    C->ncells = nc;
-    C->cell_box = malloc(4 * (size_t)(nc ? nc : 1) * sizeof *C->cell_box);
-    if (!C->cell_box) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    for (uint32_t c = 0; c < nc; c++) {
-        C->cell_box[4 * c] = C->cell_box[4 * c + 1] = INT64_MAX;
-        C->cell_box[4 * c + 2] = C->cell_box[4 * c + 3] = INT64_MIN;
-    }
-    for (uint32_t f = 0; f < P->nf; f++) {
-        int64_t *b = C->cell_box + 4 * (size_t)C->f_cell[f];
-        uint32_t g = P->f_he[f];
-        for (uint32_t e = 0; e < 4; e++, g = P->he_next[g]) {
-            int64_t x = O->xy[2 * (size_t)P->he_vert[g]], y = O->xy[2 * (size_t)P->he_vert[g] + 1];
-            if (x < b[0]) b[0] = x;
-            if (y < b[1]) b[1] = y;
-            if (x > b[2]) b[2] = x;
-            if (y > b[3]) b[3] = y;
-        }
-    }
+    st = max_side || face_limit ? split_cells(O, &B, C, max_side, face_limit, stack, pick, lim, err)
+                                : label_cells(O, &B, C, stack, err);
+    if (st) goto done;
     st = sq_omega_cells_verify(O, C, err);
 done:
     free(B.on_bnd);
@@ -358,6 +424,8 @@ done:
     free(bound);
     free(size);
     free(stack);
+    free(pick);
+    free(lim);
     if (st) sq_omega_cells_free(C);
     return st;
 }

@@ -47,8 +47,9 @@ typedef struct sq_omega_chord {
     uint32_t he_off;      /* the chord's halfedges of O->cut are             */
                           /* cells.chord_he[he_off .. he_off + len - 1],     */
                           /* face halfedges directed from start to end       */
-    /* Start: O->cut vertex he_vert[first chord halfedge], always a
-     * boundary vertex of Omega_c. start_sector: the face halfedge of
+    /* Start: O->cut vertex he_vert[first chord halfedge], a boundary
+     * vertex of Omega_c, or (a chord that splits a long cell, see
+     * sq_omega_cells_build) a vertex of an earlier chord. start_sector: the face halfedge of
      * O->cut leaving the start vertex that bounds, on its clockwise side,
      * the sector the chord leaves through at the moment it is added (the
      * chord's first halfedge is reached from it counterclockwise before any
@@ -92,6 +93,13 @@ void sq_omega_cells_init(sq_omega_cells *C);
 void sq_omega_cells_free(sq_omega_cells *C);
 
 /* Shoots the chords and labels the cells (C replaced; must be initialized).
+ * max_side > 0: then every cell wider or taller than max_side is halved
+ * across its longer dimension, repeatedly (chords that start on a side of
+ * the cell: a boundary vertex or a vertex of an earlier chord), so that
+ * every cell is at most max_side x max_side; 0: only the chords the
+ * reflex corners need. face_limit (NULL: none; else O->cut.nf entries):
+ * likewise per quad, a cell is halved while it is wider or taller than
+ * the smallest limit of its quads (0 counts as 1).
  * Verifies before returning (SQ_ERR_INTERNAL naming the first violation):
  * every cell is a rectangle exactly filled by its quads (quads = area of
  * cell_box, every quad's layout inside the box, the box's boundary made of
@@ -103,7 +111,8 @@ void sq_omega_cells_free(sq_omega_cells *C);
  * (sq_omega_cells_verify, sq_omega_cells_internal.h, has the full list).
  * SQ_ERR_ARGUMENT if a face of O is not a quad or the boundary loop is
  * broken (O not built by sq_omega_build). */
-sq_status sq_omega_cells_build(const sq_omega *O, sq_omega_cells *C, sq_error *err);
+sq_status sq_omega_cells_build(const sq_omega *O, uint32_t max_side, const uint32_t *face_limit,
+                               sq_omega_cells *C, sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -121,7 +121,9 @@ sq_status sq_omega_cells_verify(const sq_omega *O, const sq_omega_cells *C, sq_e
             }
         }
         uint32_t v0 = P->he_vert[he[0]], x = head(P, he[c->len - 1]);
-        if (!on_bnd[v0]) FAIL("omega cells: chord %u starts at vertex %u inside Omega_c", i, v0);
+        if (!on_bnd[v0] && vfirst[v0] == SQ_NONE)
+            FAIL("omega cells: chord %u starts at vertex %u inside Omega_c and on no earlier chord",
+                 i, v0);
         /* sectors named at the moment the chord is added */
         const char *why = check_sector(P, chord_of, v0, c->start_sector, he[0], i);
         if (why) FAIL("omega cells: chord %u: start_sector %u %s", i, c->start_sector, why);

@@ -24,6 +24,7 @@ void sq_param_options_default(sq_param_options *opt)
 {
     memset(opt, 0, sizeof *opt);
     opt->seed = 1;
+    opt->refine = SQ_PARAM_REFINE;
 }
 
 void sq_param_init(sq_param *P) { memset(P, 0, sizeof *P); }
@@ -93,6 +94,11 @@ typedef struct ctx {
     uint32_t *q_target;  /* Q->nv: the surface cone matched to a cone of Q */
                          /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
                          /* when unguided                                  */
+    const uint32_t *face_limit; /* O->cut.nf or NULL: cell size limits per quad */
+                                /* of Omega (refinement rounds)                */
+    uint32_t *face_limit_out;   /* O->cut.nf: the next round's limits, when   */
+                                /* some cell holds a bad triangle              */
+    uint32_t refined;           /* cells of Omega given a smaller limit        */
 } ctx;
 
 static void progress(ctx *c, const char *stage, double f)
@@ -1676,6 +1682,78 @@ out:
     return nbad;
 }
 
+/* ---- step 7c: the cells that failed, halved for the next round -------- */
+
+/* Tutte's map of a cell is bijective in exact arithmetic (convex target,
+ * no edge between two vertices of the cut: sq_tsurf_split_blocking), but
+ * where the surface cell's shape differs from its rectangle it squeezes
+ * parts of the cell exponentially, below double precision. A smaller
+ * rectangle covers a shorter stretch of the surface, whose shape differs
+ * less: every cell of Omega that holds a bad triangle gets the limit
+ * ceil(side / 2) on its longer side for the next round
+ * (sq_omega_cells_build halves it by a chord); the other cells keep their
+ * limits. Surface faces are assigned to Omega's cells by flooding from
+ * the surface copies (o2m) of the cells' boundary halfedges across uncut
+ * edges. Sets c->face_limit_out (NULL when no triangle is bad or no bad
+ * cell can be halved) and c->refined (cells halved). */
+static sq_status refine_bad_cells(ctx *c, const uint32_t *v_uv)
+{
+    const sq_tsurf *S = &c->S;
+    const sq_metapolygon *P = &c->O->cut;
+    const sq_omega_cells *C = &c->C;
+    c->face_limit_out = NULL;
+    c->refined = 0;
+    uint32_t *fc = malloc((size_t)S->nf * sizeof *fc), *stack = malloc((size_t)S->nf * sizeof *stack);
+    uint8_t *bad = calloc(C->ncells ? C->ncells : 1, 1);
+    uint32_t *out = malloc((size_t)(P->nf ? P->nf : 1) * sizeof *out);
+    sq_status st = SQ_OK;
+    if (!fc || !stack || !bad || !out) {
+        st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    uint32_t sp = 0, nbad = 0;
+    for (uint32_t f = 0; f < S->nf; f++) fc[f] = SQ_NONE;
+    for (uint32_t h = 0; h < P->nh; h++) {
+        uint32_t of = P->he_face[h];
+        if (of == SQ_NONE || (!C->he_chord[h] && P->he_face[P->he_twin[h]] != SQ_NONE)) continue;
+        uint32_t sh = c->o2m[h];
+        if (sh == SQ_NONE) continue;
+        uint32_t f = S->face[sh];
+        if (fc[f] == SQ_NONE) fc[f] = C->f_cell[of], stack[sp++] = f;
+    }
+    while (sp) {
+        uint32_t f = stack[--sp], g = S->f_he[f];
+        for (uint32_t e = 0; e < 3; e++, g = S->next[g]) {
+            if (S->kind[g]) continue;
+            uint32_t n = S->face[S->twin[g]];
+            if (fc[n] == SQ_NONE) fc[n] = fc[f], stack[sp++] = n;
+        }
+    }
+    for (uint32_t f = 0; f < S->nf; f++)
+        if (fc[f] != SQ_NONE && !bad[fc[f]] && !face_ok(c, v_uv, f)) bad[fc[f]] = 1, nbad++;
+    if (nbad == 0) goto done;
+    for (uint32_t f = 0; f < P->nf; f++) {
+        uint32_t cell = C->f_cell[f];
+        out[f] = c->face_limit ? c->face_limit[f] : UINT32_MAX;
+        if (!bad[cell]) continue;
+        const int64_t *b = C->cell_box + 4 * (size_t)cell;
+        int64_t side = b[2] - b[0] > b[3] - b[1] ? b[2] - b[0] : b[3] - b[1];
+        uint32_t lim = (uint32_t)((side + 1) / 2);
+        if (side > 1 && lim < out[f]) out[f] = lim;
+    }
+    for (uint32_t cell = 0; cell < C->ncells; cell++) {
+        const int64_t *b = C->cell_box + 4 * (size_t)cell;
+        if (bad[cell] && (b[2] - b[0] > 1 || b[3] - b[1] > 1)) c->refined++;
+    }
+    if (c->refined) c->face_limit_out = out, out = NULL;
+done:
+    free(fc);
+    free(stack);
+    free(bad);
+    free(out);
+    return st;
+}
+
 /* ---- output ---------------------------------------------------------- */
 
 /* Distortion of the map (stats): per triangle the singular values s1 >= s2
@@ -1824,9 +1902,13 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
 }
 
 /* One attempt with the options as given (opt and stats are never NULL here;
- * the cone set has passed its checks). */
+ * the cone set has passed its checks). face_limit: per quad of Omega, the
+ * cell size limit of this round (NULL: none); face_limit_out (NULL: no
+ * further round) receives the next round's limits when the map has bad
+ * triangles in cells that can still be halved (step 7c), else NULL. */
 static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                            sq_param *out, sq_param_stats *stats, sq_error *err)
+                            const uint32_t *face_limit, uint32_t **face_limit_out, sq_param *out,
+                            sq_param_stats *stats, sq_error *err)
 {
     double t_start = now_s();
     memset(stats, 0, sizeof *stats);
@@ -1838,6 +1920,8 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     c.keep_flips = opt->allow_flips;
     c.root_step = c.root_surface = SQ_NONE;
     c.S_valence = valence;
+    c.face_limit = face_limit;
+    if (face_limit_out) *face_limit_out = NULL;
     sq_tsurf_init(&c.S);
     sq_cut_graph_init(&c.G);
     sq_pattern_init(&c.pcw);
@@ -1882,7 +1966,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     if (st) goto done;
     double t2 = now_s();
     progress(&c, "cells", 0.55);
-    st = sq_omega_cells_build(c.O, &c.C, err);
+    st = sq_omega_cells_build(c.O, opt->cell_max, face_limit, &c.C, err);
     if (st == SQ_OK) st = replay_chords(&c);
     if (st) goto done;
     stats->chords = c.C.nchords, stats->cells = c.C.ncells;
@@ -1899,7 +1983,13 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     }
     st = tutte(&c, v_uv);
     if (st) goto done;
-    (void)repair_flips(&c, v_uv, 50); /* step 7b; step 8 checks every triangle */
+    /* step 7b; step 8 checks every triangle */
+    if (repair_flips(&c, v_uv, 50) > 0 && face_limit_out) {
+        st = refine_bad_cells(&c, v_uv); /* step 7c */
+        if (st) goto done;
+        *face_limit_out = c.face_limit_out;
+        stats->cells_refined = c.refined;
+    }
     double t4 = now_s();
     progress(&c, "check", 0.9);
     st = assemble(&c, v_uv, valence, out, stats);
@@ -1967,7 +2057,25 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
         if (alternate) o.tree = a % 2 ? SQ_TREE_DOMAIN : SQ_TREE_SURFACE;
         if (a > 0 && o.progress)
             o.progress(o.progress_ctx, alternate && a % 2 ? "retry with the domain's cone tree" : "retry with another cut graph", 0.0);
-        st = build_once(m, valence, &o, out, stats, err);
+        /* step 7c: the same cut graph again with the failed cells halved */
+        uint32_t *limit = NULL, rounds = 0, halved = 0;
+        for (;;) {
+            uint32_t *next = NULL;
+            st = build_once(m, valence, &o, limit, rounds < o.refine ? &next : NULL, out, stats, err);
+            halved += stats->cells_refined;
+            stats->rounds = rounds, stats->cells_refined = halved;
+            if (!next || (st != SQ_ERR_SOLVER && st != SQ_OK)) {
+                free(next);
+                break;
+            }
+            /* allow_flips: a map with flips came back (SQ_OK); rebuild it */
+            if (st == SQ_OK) sq_param_free(out);
+            if (o.progress) o.progress(o.progress_ctx, "halving the cells with bad triangles", 0.0);
+            free(limit);
+            limit = next;
+            rounds++;
+        }
+        free(limit);
         stats->attempts = a + 1;
         stats->seed_used = o.seed;
         if (st != SQ_ERR_SOLVER) break;

@@ -64,7 +64,18 @@ typedef struct sq_param_options {
      * surface and replicated in Q (seed 9.4), or Q's own shortest tree.
      * Default SQ_TREE_SURFACE. */
     int tree;
+    /* Cells of Omega at most cell_max x cell_max unit squares (long cells
+     * halved by extra chords, sq_omega_cells_build); 0: only the chords
+     * the reflex corners need. Default 0. */
+    uint32_t cell_max;
+    /* Refinement rounds per attempt (step 7c): when some triangles are bad
+     * after the interior map, the cells of Omega holding them are halved
+     * and the map rebuilt on the same cut graph, up to this many times.
+     * Default SQ_PARAM_REFINE (sq_param_options_default); 0: none. */
+    uint32_t refine;
 } sq_param_options;
+
+#define SQ_PARAM_REFINE 8
 
 /* Cone tree modes (sq_param_options.tree; only with guidance, genus >= 2):
  *  SQ_TREE_SURFACE: the surface tree (seed 9.4), Q's tree only where the
@@ -110,6 +121,9 @@ typedef struct sq_param_stats {
     double sym_dirichlet_mean, sym_dirichlet_max;
     double conformal_mean, conformal_max;
     uint32_t attempts;                      /* attempts made (1 = first)      */
+    uint32_t rounds;                        /* refinement rounds of the last  */
+                                            /* attempt (0 = none needed)      */
+    uint32_t cells_refined;                 /* cells halved, all rounds       */
     uint64_t seed_used;                     /* cut-graph seed of the result   */
     int guided;                             /* 1: seed 9.2 guidance was used  */
     int surface_tree;                       /* 1: the seed 9.4 surface tree   */

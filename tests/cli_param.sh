@@ -21,8 +21,8 @@ bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 # models whose parametrization must pass the referee today, with the
 # cut-graph seed that does it (docs/param.md); every other model runs one
 # attempt and must either pass or fail cleanly
-must_pass="eight cup knot1"
-seed_of() { case $1 in eight) echo 1 ;; cup) echo 3 ;; knot1) echo 6 ;; *) echo 1 ;; esac; }
+must_pass="eight cup knot1 holes3 sculpt helmet genus3 femur fandisk homer rocker_arm trim-star fertility_tri"
+seed_of() { case $1 in femur) echo 3 ;; homer) echo 2 ;; fertility_tri) echo 7 ;; *) echo 1 ;; esac; }
 known=0
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -84,11 +84,12 @@ PY
   fi
 done <"$shared/data/MANIFEST.tsv"
 
-# --- retries: mpz/cup fails its exact check with seed 2 and passes with the
-# next seed; --attempts 2 must find it and say so in --json ------------------
+# --- retries: without refinement rounds mpz/cup fails its exact check with
+# seed 2 and passes with the next seed; --attempts 2 must find it and say so
+# in --json --------------------------------------------------------------------
 cup=$shared/data/mpz/cup.obj
 "$bin" param "$cup" --cones "$shared/data/mpz/cup_Th_hat" -o "$tmp/cup_retry.obj" --seed 2 --attempts 2 \
-  --json >"$tmp/cup_retry.json" 2>"$tmp/cup_retry.err"
+  --refine 0 --json >"$tmp/cup_retry.json" 2>"$tmp/cup_retry.err"
 if [ $? -eq 0 ] && grep -q "retry" "$tmp/cup_retry.err" \
     && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["attempts"]==2 and j["seed_used"]==3 and j["guided"], j' "$tmp/cup_retry.json" \
     && python3 "$referee" "$cup" "$shared/data/mpz/cup_Th_hat" "$tmp/cup_retry.obj" --integer >"$tmp/cup_retry.ref" 2>&1; then
@@ -97,8 +98,9 @@ else
   bad "retry: mpz/cup --seed 2 --attempts 2: $(tail -1 "$tmp/cup_retry.err") $(cat "$tmp/cup_retry.json")"
 fi
 # --guide off on the same cut: the unguided construction (seed 5.3) fails there
+# (without refinement rounds)
 "$bin" param "$cup" --cones "$shared/data/mpz/cup_Th_hat" -o "$tmp/e_cup.obj" --seed 3 --attempts 1 --guide off \
-  --quiet >/dev/null 2>"$tmp/cup_off.err"
+  --refine 0 --quiet >/dev/null 2>"$tmp/cup_off.err"
 if [ $? -eq 3 ] && grep -q "not injective in floating point" "$tmp/cup_off.err" && [ ! -e "$tmp/e_cup.obj" ]; then
   ok; echo "PASS --guide off: mpz/cup seed 3 fails cleanly without guidance"
 else
@@ -136,10 +138,31 @@ passes_at() {
 passes_at sculpt 20 --tree domain
 passes_at holes3 111
 
-# --- --diagnose: mpz/holes3 seed 8 fails by a few dozen triangles; the
-# failing cells are drawn and reported, the map is still not written -------
+# --- refinement rounds (step 7c): mpz/helmet seed 1 fails without them and
+# passes with them; --json counts the rounds, the text report names them --
+helmet=$shared/data/mpz/helmet.obj
+"$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h0.obj" --attempts 1 --refine 0 \
+  --quiet >/dev/null 2>"$tmp/h0.err"
+rc0=$?
+"$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h1.obj" --attempts 1 --json \
+  --quiet >"$tmp/h1.json" 2>"$tmp/h1.err"
+rc1=$?
+"$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h2.obj" --attempts 1 \
+  --quiet >"$tmp/h2.txt" 2>/dev/null
+if [ $rc0 -eq 3 ] && grep -q "not injective in floating point" "$tmp/h0.err" && [ ! -e "$tmp/h0.obj" ] \
+    && [ $rc1 -eq 0 ] && grep -q "^refinement  *[0-9]* rounds" "$tmp/h2.txt" \
+    && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["refine_rounds"]>=1 and j["cells_halved"]>=j["refine_rounds"] and j["attempts"]==1 and j["cells"]==j["chords"]+1, j' "$tmp/h1.json" \
+    && python3 "$referee" "$helmet" "$shared/data/mpz/helmet_Th_hat" "$tmp/h1.obj" --integer >"$tmp/h1.ref" 2>&1; then
+  ok; echo "PASS --refine: mpz/helmet seed 1 fails with --refine 0, passes after $(grep -o '"refine_rounds": [0-9]*' "$tmp/h1.json"): $(tail -1 "$tmp/h1.ref")"
+else
+  bad "--refine: exit $rc0/$rc1: $(tail -1 "$tmp/h0.err") $(tail -1 "$tmp/h1.err") $(tail -1 "$tmp/h1.ref" 2>/dev/null)"
+fi
+
+# --- --diagnose: mpz/holes3 seed 8 fails by a few dozen triangles (without
+# refinement rounds); the failing cells are drawn and reported, the map is
+# still not written -------------------------------------------------------------
 h3=$shared/data/mpz/holes3.obj
-"$bin" param "$h3" --cones "$shared/data/mpz/holes3_Th_hat" -o "$tmp/diag.obj" --seed 8 --attempts 1 \
+"$bin" param "$h3" --cones "$shared/data/mpz/holes3_Th_hat" -o "$tmp/diag.obj" --seed 8 --attempts 1 --refine 0 \
   --diagnose "$tmp/diag.svg" --json --quiet >"$tmp/diag.json" 2>"$tmp/diag.err"
 if [ $? -eq 3 ] && [ ! -e "$tmp/diag.obj" ] && grep -q "<svg" "$tmp/diag.svg" && grep -q "</svg>" "$tmp/diag.svg" \
     && grep -q "diagnosis (seed 8)" "$tmp/diag.err" \
@@ -199,6 +222,7 @@ expect "missing --cones" 2 "give MESH" -- "$knot" -o "$tmp/e/x.obj"
 expect "unknown option" 2 "unknown option" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --bogus
 expect "bad --seed" 2 "seed" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --seed x
 expect "bad --attempts" 2 "attempts" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --attempts 0
+expect "bad --refine" 2 "refine" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --refine 65
 expect "bad --guide" 2 "guide" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --guide sometimes
 expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --tree random
 expect "two meshes" 2 "unexpected argument" -- "$knot" "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj"

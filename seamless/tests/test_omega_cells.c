@@ -107,6 +107,55 @@ static void check_cells(const sq_omega *O, const sq_omega_cells *C, const char *
     free(sq), free(order);
 }
 
+/* Long cells halved (sq_omega_cells_build's max_side and face_limit): the
+ * reflex chords come first, unchanged; every cell fits its limit; the
+ * brief still holds (the builder's own verifier ran too). base: the
+ * build without limits. */
+static void check_split(const sq_omega *O, const sq_omega_cells *base, const char *name)
+{
+    const sq_metapolygon *P = &O->cut;
+    uint32_t *limit = malloc((P->nf ? P->nf : 1) * sizeof *limit);
+    assert_non_null(limit);
+    for (uint32_t round = 0; round < 4; round++) {
+        uint32_t max_side = round < 3 ? round + 1 : 0;
+        /* round 3: a limit per quad, 1 to 4 by a hash of the quad, or of
+         * its base cell (then equal in the whole cell); the test's random
+         * stream is left alone */
+        for (uint32_t f = 0; f < P->nf; f++) {
+            uint32_t hf = f * 2654435761u, hc = base->f_cell[f] * 2246822519u;
+            limit[f] = 1 + ((hf >> 13) % 2 ? (hc >> 11) % 4 : (hf >> 17) % 4);
+        }
+        sq_omega_cells C;
+        sq_error err;
+        sq_omega_cells_init(&C);
+        if (sq_omega_cells_build(O, max_side, round == 3 ? limit : NULL, &C, &err))
+            fail_msg("%s: cells (max_side %u): %s", name, max_side, err.msg);
+        check_cells(O, &C, name);
+        assert_true(C.nchords >= base->nchords);
+        for (uint32_t i = 0; i < base->nchords; i++) {
+            assert_int_equal(C.chord[i].len, base->chord[i].len);
+            assert_memory_equal(C.chord_he + C.chord[i].he_off, base->chord_he + base->chord[i].he_off,
+                                base->chord[i].len * sizeof *C.chord_he);
+        }
+        uint32_t *lim = malloc(C.ncells * sizeof *lim);
+        assert_non_null(lim);
+        for (uint32_t c = 0; c < C.ncells; c++) lim[c] = max_side ? max_side : UINT32_MAX;
+        if (round == 3)
+            for (uint32_t f = 0; f < P->nf; f++)
+                if (limit[f] < lim[C.f_cell[f]]) lim[C.f_cell[f]] = limit[f];
+        for (uint32_t c = 0; c < C.ncells; c++) {
+            const int64_t *b = C.cell_box + 4 * (size_t)c;
+            if (b[2] - b[0] > (int64_t)lim[c] || b[3] - b[1] > (int64_t)lim[c])
+                fail_msg("%s: cell %u is %lld x %lld, limit %u", name, c, (long long)(b[2] - b[0]),
+                         (long long)(b[3] - b[1]), lim[c]);
+        }
+        if (max_side == 1) assert_int_equal(C.ncells, P->nf); /* unit squares */
+        free(lim);
+        sq_omega_cells_free(&C);
+    }
+    free(limit);
+}
+
 /* Omega of one cone multiset, or 0 if the domain builder declines (genus 0
  * and 1 builders do not cover every multiset). */
 static int build_omega(uint32_t genus, const int32_t *val, uint32_t n, sq_domain *D,
@@ -135,9 +184,10 @@ static void run_case(uint32_t genus, const int32_t *val, uint32_t n, cells_stats
     sq_omega_init(&O);
     sq_omega_cells_init(&C);
     if (!build_omega(genus, val, n, &D, &T, &O, name)) return;
-    if (sq_omega_cells_build(&O, &C, &err)) fail_msg("%s: cells: %s", name, err.msg);
+    if (sq_omega_cells_build(&O, 0, NULL, &C, &err)) fail_msg("%s: cells: %s", name, err.msg);
     if (sq_omega_cells_verify(&O, &C, &err)) fail_msg("%s: verify: %s", name, err.msg);
     check_cells(&O, &C, name);
+    check_split(&O, &C, name);
     if (cs) {
         cs->cases++;
         cs->quads += O.cut.nf;
@@ -327,7 +377,7 @@ static void test_verify_catches(void **state)
     sq_omega_cells_init(&C);
     assert_true(build_omega(3, helmet, 9, &D, &T, &O, "helmet"));
     const sq_metapolygon *P = &O.cut;
-    assert_int_equal(sq_omega_cells_build(&O, &C, &err), SQ_OK);
+    assert_int_equal(sq_omega_cells_build(&O, 0, NULL, &C, &err), SQ_OK);
     assert_true(C.nchords >= 3);
     assert_int_equal(sq_omega_cells_verify(&O, &C, &err), SQ_OK);
 

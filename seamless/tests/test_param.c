@@ -113,10 +113,11 @@ static void test_eight_passes(void **state)
     unload(&M);
 }
 
-/* mpz/cup (genus 2): with seed 9.2 guidance and the seed 9.4 tree (the
- * default for genus >= 2) cut-graph seed 3 gives a map the referee passes;
- * the same cut without guidance does not (flips in doubles); seed 2 fails
- * with guidance too, so two attempts from seed 2 find seed 3 */
+/* mpz/cup (genus 2), without refinement rounds (step 7c, see
+ * test_refine): with seed 9.2 guidance and the seed 9.4 tree (the default
+ * for genus >= 2) cut-graph seed 3 gives a map the referee passes; the
+ * same cut without guidance does not (flips in doubles); seed 2 fails with
+ * guidance too, so two attempts from seed 2 find seed 3 */
 static void test_cup_guided(void **state)
 {
     (void)state;
@@ -128,6 +129,7 @@ static void test_cup_guided(void **state)
     sq_param_options opt;
     sq_param_options_default(&opt);
     opt.seed = 3;
+    opt.refine = 0;
     sq_error err = {0};
     sq_status s = sq_param_build(&M.m, M.val, &opt, &P, &st, &err);
     if (s) fail_msg("cup seed 3: %s", err.msg);
@@ -217,6 +219,40 @@ static void test_all_models_compatible(void **state)
     }
 }
 
+/* Step 7c: mpz/helmet (genus 2, a valence-22 cone) at seed 1 leaves
+ * thousands of flipped or flat triangles without refinement; with it the
+ * cells holding them are halved until the map passes the referee, on the
+ * same cut graph (one attempt). */
+static void test_refine(void **state)
+{
+    (void)state;
+    model M;
+    load(&M, "mpz/helmet");
+    sq_param P;
+    sq_param_init(&P);
+    sq_param_stats st0, st;
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    assert_int_equal(opt.refine, SQ_PARAM_REFINE);
+    opt.refine = 0;
+    sq_error err = {0};
+    assert_int_equal(sq_param_build(&M.m, M.val, &opt, &P, &st0, &err), SQ_ERR_SOLVER);
+    assert_non_null(strstr(err.msg, "not injective in floating point"));
+    assert_null(P.pos);
+    assert_true(st0.rounds == 0 && st0.cells_refined == 0);
+    opt.refine = SQ_PARAM_REFINE;
+    sq_status s = sq_param_build(&M.m, M.val, &opt, &P, &st, &err);
+    if (s) fail_msg("helmet, refined: %s", err.msg);
+    assert_true(st.attempts == 1 && st.seed_used == 1);
+    assert_true(st.rounds >= 1 && st.rounds <= SQ_PARAM_REFINE && st.cells_refined >= st.rounds);
+    assert_true(st.cells > st0.cells);
+    assert_int_equal(st.cells, st.chords + 1);
+    assert_int_equal(sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err), SQ_OK);
+    assert_referee_passes(&M, &P, "helmet");
+    sq_param_free(&P);
+    unload(&M);
+}
+
 /* sq_param_bad_cells: on a map with flips (mpz/holes3 seed 8, kept with
  * allow_flips) every bad triangle lies in a reported cell, each cell's
  * rectangle has positive size and its boundary runs along its four sides;
@@ -232,6 +268,7 @@ static void test_bad_cells(void **state)
     sq_param_options opt;
     sq_param_options_default(&opt);
     opt.seed = 8;
+    opt.refine = 0; /* the flips as Tutte's map leaves them */
     opt.allow_flips = 1;
     sq_error err = {0};
     if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("holes3 seed 8: %s", err.msg);
@@ -305,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_eight_passes),
         cmocka_unit_test(test_cup_guided),
         cmocka_unit_test(test_all_models_compatible),
+        cmocka_unit_test(test_refine),
         cmocka_unit_test(test_bad_cells),
         cmocka_unit_test(test_rejects_bad_cones),
     };
