@@ -86,6 +86,9 @@ static void help(FILE *f)
             "                      Omega holding them are halved by more chords and the\n"
             "                      map is rebuilt on the same cut graph; each round adds\n"
             "                      Steiner vertices. 0: none\n"
+            "  --max-steiner N     Steiner vertices allowed per attempt (default 9 per\n"
+            "                      input vertex + 100000); an attempt that needs more\n"
+            "                      gives up (and the next seed is tried)\n"
             "  --diagnose OUT.svg  when the map fails its orientation check: the last\n"
             "                      attempt is rebuilt keeping its flips, and the cells of\n"
             "                      Omega holding bad triangles are drawn on the surface and\n"
@@ -312,7 +315,8 @@ static int parse_u64(const char *arg, unsigned long long lo, unsigned long long 
  * flips; the cells with bad triangles reported on stderr and drawn. Returns
  * 1 when the picture was written. */
 static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, unsigned long long seed,
-                          const sq_param_stats *failed, int guidance, uint32_t refine, const char *path,
+                          const sq_param_stats *failed, int guidance, uint32_t refine,
+                          uint64_t max_steiner, const char *path,
                           sq_param_cell *cells,
                           uint32_t *ncells)
 {
@@ -323,6 +327,7 @@ static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, unsigned long
     opt.guidance = guidance;
     opt.tree = failed->surface_tree ? SQ_TREE_SURFACE : SQ_TREE_DOMAIN;
     opt.refine = refine;
+    opt.max_steiner = max_steiner;
     opt.allow_flips = 1;
     sq_param P;
     sq_param_init(&P);
@@ -356,7 +361,7 @@ int sq_cmd_param(int argc, char **argv)
     memset(out, 0, sizeof out);
     int json = 0, quiet = 0;
     const char *diagnose = NULL;
-    unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS, refine = SQ_PARAM_REFINE;
+    unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS, refine = SQ_PARAM_REFINE, max_steiner = 0;
     int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -394,6 +399,12 @@ int sq_cmd_param(int argc, char **argv)
             if (!parse_u64(argv[++i], 0, 64, &refine)) {
                 fprintf(stderr, "seamquad param: --refine needs an integer from 0 to 64, got '%s'\n",
                         argv[i]);
+                return SQ_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--max-steiner") && has) {
+            if (!parse_u64(argv[++i], 1, 1000000000ull, &max_steiner)) {
+                fprintf(stderr, "seamquad param: --max-steiner needs an integer from 1 to 1000000000, "
+                                "got '%s'\n", argv[i]);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--tree") && has) {
@@ -483,6 +494,7 @@ int sq_cmd_param(int argc, char **argv)
     opt.seed = seed;
     opt.attempts = (uint32_t)attempts;
     opt.refine = (uint32_t)refine;
+    opt.max_steiner = max_steiner;
     opt.guidance = guidance;
     opt.tree = tree;
     opt.progress = on_progress;
@@ -547,7 +559,8 @@ fail:
     uint32_t ncells = 0;
     int diagnosed = 0;
     if (diagnose && !strcmp(stage, "param") && err.code == SQ_ERR_SOLVER && strstr(err.msg, "not injective"))
-        diagnosed = diagnose_cells(&mesh, val, seed, &stats, guidance, (uint32_t)refine, diagnose, cells, &ncells);
+        diagnosed = diagnose_cells(&mesh, val, seed, &stats, guidance, (uint32_t)refine, max_steiner, diagnose, cells,
+                                   &ncells);
     if (json) {
         printf("{\n  \"ok\": false,\n  ");
         sq_json_error(err.code, stage, err.msg);

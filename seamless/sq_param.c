@@ -154,17 +154,21 @@ static uint32_t surface_side_of_q(const ctx *c, uint32_t qs) { return c->k - 1 -
 static uint32_t q_side_of_surface(const ctx *c, uint32_t s) { return (2 * c->k - 1 - s - c->r % c->k) % c->k; }
 static uint32_t surface_corner_of_q(const ctx *c, uint32_t i) { return (c->k - (i + c->r) % c->k) % c->k; }
 
-static int over_budget(const ctx *c)
+/* Steiner vertices allowed (sq_param_options.max_steiner) */
+static uint64_t steiner_budget(const ctx *c)
 {
-    return c->S.nv > 10u * c->S.nv_input + 100000u;
+    return c->opt->max_steiner ? c->opt->max_steiner : 9u * (uint64_t)c->S.nv_input + 100000u;
 }
+
+static int over_budget(const ctx *c) { return (uint64_t)(c->S.nv - c->S.nv_input) > steiner_budget(c); }
 
 static sq_status budget_error(ctx *c, const char *stage)
 {
     return sq_error_set(c->err, SQ_ERR_SOLVER,
-                        "%s: more than %u Steiner vertices were needed (input %u vertices); the "
-                        "surface cut is too far from the domain's shape (try other --seed values)",
-                        stage, 9u * c->S.nv_input + 100000u, c->S.nv_input);
+                        "%s: more than %llu Steiner vertices were needed (input %u vertices); the "
+                        "surface cut is too far from the domain's shape (try other --seed values, "
+                        "or a larger --max-steiner)",
+                        stage, (unsigned long long)steiner_budget(c), c->S.nv_input);
 }
 
 static double snap(const ctx *c, double x) { return ldexp(nearbyint(ldexp(x, c->dyadic)), -c->dyadic); }

@@ -73,6 +73,9 @@ typedef struct sq_param_options {
      * and the map rebuilt on the same cut graph, up to this many times.
      * Default SQ_PARAM_REFINE (sq_param_options_default); 0: none. */
     uint32_t refine;
+    /* Steiner vertices allowed before an attempt gives up (SQ_ERR_SOLVER);
+     * 0: 9 per input vertex + 100000. */
+    uint64_t max_steiner;
 } sq_param_options;
 
 #define SQ_PARAM_REFINE 8

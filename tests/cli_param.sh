@@ -223,6 +223,10 @@ expect "unknown option" 2 "unknown option" -- "$knot" --cones "$knot_cones" -o "
 expect "bad --seed" 2 "seed" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --seed x
 expect "bad --attempts" 2 "attempts" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --attempts 0
 expect "bad --refine" 2 "refine" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --refine 65
+expect "bad --max-steiner" 2 "max-steiner" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-steiner 0
+# a Steiner budget the cut cannot keep: a clean failure that names it
+expect "--max-steiner 10" 3 "more than 10 Steiner vertices" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
+  --max-steiner 10 --attempts 1
 expect "bad --guide" 2 "guide" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --guide sometimes
 expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --tree random
 expect "two meshes" 2 "unexpected argument" -- "$knot" "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj"
