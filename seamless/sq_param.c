@@ -1693,10 +1693,10 @@ out:
  * where the surface cell's shape differs from its rectangle it squeezes
  * parts of the cell exponentially, below double precision. A smaller
  * rectangle covers a shorter stretch of the surface, whose shape differs
- * less: every cell of Omega that holds a bad triangle gets the limit
- * ceil(side / 2) on its longer side for the next round
- * (sq_omega_cells_build halves it by a chord); the other cells keep their
- * limits. Surface faces are assigned to Omega's cells by flooding from
+ * less: every cell of Omega that holds a bad triangle is limited to
+ * ceil(s / 2) x ceil(s / 2) quads, s its longer side, for the next round
+ * (sq_omega_cells_build halves it by chords until it fits); the other
+ * cells keep their limits. Surface faces are assigned to Omega's cells by flooding from
  * the surface copies (o2m) of the cells' boundary halfedges across uncut
  * edges. Sets c->face_limit_out (NULL when no triangle is bad or no bad
  * cell can be halved) and c->refined (cells halved). */
