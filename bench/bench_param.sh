@@ -6,7 +6,7 @@
 # result, attempts, time per step (of the successful attempt) and wall time
 # in total (median of N runs), peak RSS,
 # faces in and out, quads of the domain, beside the seed's Table 1. Default
-# options (up to 8 attempts with the next cut-graph seed, guidance auto);
+# options (up to 16 attempts with the next cut-graph seed, guidance auto);
 # a failed model shows the wall time and memory until its clean failure, and
 # the domain of its last attempt (--json "last_attempt").
 # Builds in Release mode into build-bench/.

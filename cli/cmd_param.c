@@ -18,7 +18,7 @@
 #include "sq_param.h"
 
 /* default --attempts */
-#define SQ_PARAM_CLI_ATTEMPTS 8
+#define SQ_PARAM_CLI_ATTEMPTS 16
 
 #define MAX_VALENCE_HIST 64
 
