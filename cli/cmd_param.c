@@ -84,8 +84,8 @@ static void help(FILE *f)
             "                      UV triangles come out flipped or flat (Tutte's map of\n"
             "                      a cell squeezed below double precision), the cells of\n"
             "                      Omega holding them are halved by more chords and the\n"
-            "                      map is rebuilt on the same cut graph; each round adds\n"
-            "                      Steiner vertices. 0: none\n"
+            "                      map is redone on the same cut and boundary map; each\n"
+            "                      round adds Steiner vertices. 0: none\n"
             "  --max-steiner N     Steiner vertices allowed per attempt (default 9 per\n"
             "                      input vertex + 100000); an attempt that needs more\n"
             "                      gives up (and the next seed is tried)\n"
@@ -309,26 +309,34 @@ static int parse_u64(const char *arg, unsigned long long lo, unsigned long long 
     return 1;
 }
 
+/* The value of option `name`, or a message naming it (0 returned). */
+static int u64_option(const char *name, const char *arg, unsigned long long lo, unsigned long long hi,
+                      unsigned long long *out)
+{
+    if (parse_u64(arg, lo, hi, out)) return 1;
+    if (lo == 0 && hi == UINT64_MAX)
+        fprintf(stderr, "seamquad param: %s needs a non-negative integer, got '%s'\n", name, arg);
+    else
+        fprintf(stderr, "seamquad param: %s needs an integer from %llu to %llu, got '%s'\n", name, lo, hi, arg);
+    return 0;
+}
+
 #define DIAG_CELLS 6
 
-/* --diagnose: the last attempt again (its seed, one attempt), keeping its
- * flips; the cells with bad triangles reported on stderr and drawn. Returns
- * 1 when the picture was written. */
-static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, unsigned long long seed,
-                          const sq_param_stats *failed, int guidance, uint32_t refine,
-                          uint64_t max_steiner, const char *path,
-                          sq_param_cell *cells,
+/* --diagnose: the last attempt of the failed run (options `run`) again
+ * (its seed and tree, one attempt, no progress), keeping its flips; the
+ * cells with bad triangles reported on stderr and drawn. Returns 1 when
+ * the picture was written. */
+static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, const sq_param_options *run,
+                          const sq_param_stats *failed, const char *path, sq_param_cell *cells,
                           uint32_t *ncells)
 {
-    sq_param_options opt;
-    sq_param_options_default(&opt);
-    opt.seed = failed->seed_used ? failed->seed_used : seed;
+    sq_param_options opt = *run;
+    opt.seed = failed->seed_used ? failed->seed_used : run->seed;
     opt.attempts = 1;
-    opt.guidance = guidance;
     opt.tree = failed->surface_tree ? SQ_TREE_SURFACE : SQ_TREE_DOMAIN;
-    opt.refine = refine;
-    opt.max_steiner = max_steiner;
     opt.allow_flips = 1;
+    opt.progress = NULL, opt.progress_ctx = NULL;
     sq_param P;
     sq_param_init(&P);
     sq_param_stats st;
@@ -384,29 +392,13 @@ int sq_cmd_param(int argc, char **argv)
         } else if (!strcmp(a, "--diagnose") && has) {
             diagnose = argv[++i];
         } else if (!strcmp(a, "--seed") && has) {
-            if (!parse_u64(argv[++i], 0, UINT64_MAX, &seed)) {
-                fprintf(stderr, "seamquad param: --seed needs a non-negative integer, got '%s'\n",
-                        argv[i]);
-                return SQ_EXIT_USAGE;
-            }
+            if (!u64_option(a, argv[++i], 0, UINT64_MAX, &seed)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--attempts") && has) {
-            if (!parse_u64(argv[++i], 1, 1000, &attempts)) {
-                fprintf(stderr, "seamquad param: --attempts needs an integer from 1 to 1000, got "
-                                "'%s'\n", argv[i]);
-                return SQ_EXIT_USAGE;
-            }
+            if (!u64_option(a, argv[++i], 1, 1000, &attempts)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--refine") && has) {
-            if (!parse_u64(argv[++i], 0, 64, &refine)) {
-                fprintf(stderr, "seamquad param: --refine needs an integer from 0 to 64, got '%s'\n",
-                        argv[i]);
-                return SQ_EXIT_USAGE;
-            }
+            if (!u64_option(a, argv[++i], 0, 64, &refine)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--max-steiner") && has) {
-            if (!parse_u64(argv[++i], 1, 1000000000ull, &max_steiner)) {
-                fprintf(stderr, "seamquad param: --max-steiner needs an integer from 1 to 1000000000, "
-                                "got '%s'\n", argv[i]);
-                return SQ_EXIT_USAGE;
-            }
+            if (!u64_option(a, argv[++i], 1, 1000000000ull, &max_steiner)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--tree") && has) {
             const char *arg = argv[++i];
             if (!strcmp(arg, "alternate")) tree = SQ_TREE_ALTERNATE;
@@ -448,6 +440,19 @@ int sq_cmd_param(int argc, char **argv)
                 return SQ_EXIT_USAGE;
             }
 
+    progress_state ps; /* its clock starts with the parametrization */
+    memset(&ps, 0, sizeof ps);
+    ps.quiet = quiet;
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.seed = seed;
+    opt.attempts = (uint32_t)attempts;
+    opt.refine = (uint32_t)refine;
+    opt.max_steiner = max_steiner;
+    opt.guidance = guidance;
+    opt.tree = tree;
+    opt.progress = on_progress;
+    opt.progress_ctx = &ps;
     sq_error err;
     sq_error_clear(&err);
     sq_soup soup;
@@ -485,20 +490,7 @@ int sq_cmd_param(int argc, char **argv)
 
     /* the parametrization */
     stage = "param";
-    progress_state ps;
-    memset(&ps, 0, sizeof ps);
     ps.t0 = ps.t_last = sq_now();
-    ps.quiet = quiet;
-    sq_param_options opt;
-    sq_param_options_default(&opt);
-    opt.seed = seed;
-    opt.attempts = (uint32_t)attempts;
-    opt.refine = (uint32_t)refine;
-    opt.max_steiner = max_steiner;
-    opt.guidance = guidance;
-    opt.tree = tree;
-    opt.progress = on_progress;
-    opt.progress_ctx = &ps;
     if (sq_param_build(&mesh, val, &opt, &P, &stats, &err)) goto fail;
     /* the library's own check ran inside; this one is independent */
     stage = "verify";
@@ -559,8 +551,7 @@ fail:
     uint32_t ncells = 0;
     int diagnosed = 0;
     if (diagnose && !strcmp(stage, "param") && err.code == SQ_ERR_SOLVER && strstr(err.msg, "not injective"))
-        diagnosed = diagnose_cells(&mesh, val, seed, &stats, guidance, (uint32_t)refine, max_steiner, diagnose, cells,
-                                   &ncells);
+        diagnosed = diagnose_cells(&mesh, val, &opt, &stats, diagnose, cells, &ncells);
     if (json) {
         printf("{\n  \"ok\": false,\n  ");
         sq_json_error(err.code, stage, err.msg);

@@ -94,11 +94,8 @@ typedef struct ctx {
     uint32_t *q_target;  /* Q->nv: the surface cone matched to a cone of Q */
                          /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
                          /* when unguided                                  */
-    const uint32_t *face_limit; /* O->cut.nf or NULL: cell size limits per quad */
-                                /* of Omega (refinement rounds)                */
-    uint32_t *face_limit_out;   /* O->cut.nf: the next round's limits, when   */
-                                /* some cell holds a bad triangle              */
-    uint32_t refined;           /* cells of Omega given a smaller limit        */
+    uint32_t *face_limit;       /* O->cut.nf or NULL: cell size limits per quad */
+                                /* of Omega (step 7c, refinement rounds)       */
 } ctx;
 
 static void progress(ctx *c, const char *stage, double f)
@@ -1696,26 +1693,24 @@ out:
  * less: every cell of Omega that holds a bad triangle is limited to
  * ceil(s / 2) x ceil(s / 2) quads, s its longer side, for the next round
  * (sq_omega_cells_build halves it by chords until it fits); the other
- * cells keep their limits. Surface faces are assigned to Omega's cells by flooding from
- * the surface copies (o2m) of the cells' boundary halfedges across uncut
- * edges. Sets c->face_limit_out (NULL when no triangle is bad or no bad
- * cell can be halved) and c->refined (cells halved). */
-static sq_status refine_bad_cells(ctx *c, const uint32_t *v_uv)
+ * cells keep their limits. Surface faces are assigned to Omega's cells by
+ * flooding from the surface copies (o2m) of the cells' boundary halfedges
+ * across uncut edges. *halved receives the number of cells given a new
+ * limit; when it is not 0, c->face_limit holds the next round's limits. */
+static sq_status refine_bad_cells(ctx *c, const uint32_t *v_uv, uint32_t *halved)
 {
     const sq_tsurf *S = &c->S;
     const sq_metapolygon *P = &c->O->cut;
     const sq_omega_cells *C = &c->C;
-    c->face_limit_out = NULL;
-    c->refined = 0;
+    *halved = 0;
     uint32_t *fc = malloc((size_t)S->nf * sizeof *fc), *stack = malloc((size_t)S->nf * sizeof *stack);
-    uint8_t *bad = calloc(C->ncells ? C->ncells : 1, 1);
-    uint32_t *out = malloc((size_t)(P->nf ? P->nf : 1) * sizeof *out);
+    uint32_t *lim = malloc((size_t)(C->ncells ? C->ncells : 1) * sizeof *lim); /* per cell */
     sq_status st = SQ_OK;
-    if (!fc || !stack || !bad || !out) {
+    if (!fc || !stack || !lim) {
         st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    uint32_t sp = 0, nbad = 0;
+    uint32_t sp = 0;
     for (uint32_t f = 0; f < S->nf; f++) fc[f] = SQ_NONE;
     for (uint32_t h = 0; h < P->nh; h++) {
         uint32_t of = P->he_face[h];
@@ -1733,29 +1728,83 @@ static sq_status refine_bad_cells(ctx *c, const uint32_t *v_uv)
             if (fc[n] == SQ_NONE) fc[n] = fc[f], stack[sp++] = n;
         }
     }
-    for (uint32_t f = 0; f < S->nf; f++)
-        if (fc[f] != SQ_NONE && !bad[fc[f]] && !face_ok(c, v_uv, f)) bad[fc[f]] = 1, nbad++;
-    if (nbad == 0) goto done;
-    for (uint32_t f = 0; f < P->nf; f++) {
-        uint32_t cell = C->f_cell[f];
-        out[f] = c->face_limit ? c->face_limit[f] : UINT32_MAX;
-        if (!bad[cell]) continue;
-        const int64_t *b = C->cell_box + 4 * (size_t)cell;
+    /* the new limit of each bad cell that can still be halved */
+    for (uint32_t k = 0; k < C->ncells; k++) lim[k] = UINT32_MAX;
+    for (uint32_t f = 0; f < S->nf; f++) {
+        uint32_t k = fc[f];
+        if (k == SQ_NONE || lim[k] != UINT32_MAX || face_ok(c, v_uv, f)) continue;
+        const int64_t *b = C->cell_box + 4 * (size_t)k;
         int64_t side = b[2] - b[0] > b[3] - b[1] ? b[2] - b[0] : b[3] - b[1];
-        uint32_t lim = (uint32_t)((side + 1) / 2);
-        if (side > 1 && lim < out[f]) out[f] = lim;
+        if (side > 1) lim[k] = (uint32_t)((side + 1) / 2), ++*halved; /* a unit square stays */
     }
-    for (uint32_t cell = 0; cell < C->ncells; cell++) {
-        const int64_t *b = C->cell_box + 4 * (size_t)cell;
-        if (bad[cell] && (b[2] - b[0] > 1 || b[3] - b[1] > 1)) c->refined++;
+    if (*halved == 0) goto done;
+    if (!c->face_limit) {
+        c->face_limit = malloc((size_t)(P->nf ? P->nf : 1) * sizeof *c->face_limit);
+        if (!c->face_limit) {
+            st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        for (uint32_t f = 0; f < P->nf; f++) c->face_limit[f] = UINT32_MAX;
     }
-    if (c->refined) c->face_limit_out = out, out = NULL;
+    for (uint32_t f = 0; f < P->nf; f++) {
+        uint32_t l = lim[C->f_cell[f]];
+        if (l < c->face_limit[f]) c->face_limit[f] = l;
+    }
 done:
     free(fc);
     free(stack);
-    free(bad);
-    free(out);
+    free(lim);
     return st;
+}
+
+/* The state of an attempt before its cells (step 6): every refinement
+ * round starts again from it, so the cut graph, domain, tree and boundary
+ * map are built once per attempt. */
+typedef struct before_cells {
+    sq_tsurf S;
+    uint32_t *sec_uv, cap_sec;
+    double *uv;
+    uint32_t nuv;
+    uint32_t *o2m;
+} before_cells;
+
+static void before_cells_free(before_cells *b)
+{
+    sq_tsurf_free(&b->S);
+    free(b->sec_uv);
+    free(b->uv);
+    free(b->o2m);
+    memset(b, 0, sizeof *b);
+}
+
+static sq_status before_cells_save(const ctx *c, before_cells *b)
+{
+    size_t nh = c->O->cut.nh;
+    memset(b, 0, sizeof *b);
+    b->sec_uv = malloc((size_t)(c->cap_sec ? c->cap_sec : 1) * sizeof *b->sec_uv);
+    b->uv = malloc(2 * (size_t)(c->nuv ? c->nuv : 1) * sizeof *b->uv);
+    b->o2m = malloc((nh ? nh : 1) * sizeof *b->o2m);
+    if (!b->sec_uv || !b->uv || !b->o2m || sq_tsurf_copy(&b->S, &c->S)) {
+        before_cells_free(b);
+        return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    }
+    memcpy(b->sec_uv, c->sec_uv, (size_t)c->cap_sec * sizeof *b->sec_uv);
+    memcpy(b->uv, c->uv, 2 * (size_t)c->nuv * sizeof *b->uv);
+    memcpy(b->o2m, c->o2m, nh * sizeof *b->o2m);
+    b->cap_sec = c->cap_sec, b->nuv = c->nuv;
+    return SQ_OK;
+}
+
+/* Back to the saved state (sec_uv and uv only grow, so they have room). */
+static sq_status before_cells_restore(ctx *c, const before_cells *b)
+{
+    if (sq_tsurf_copy(&c->S, &b->S)) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    memcpy(c->sec_uv, b->sec_uv, (size_t)b->cap_sec * sizeof *c->sec_uv);
+    for (uint32_t i = b->cap_sec; i < c->cap_sec; i++) c->sec_uv[i] = SQ_NONE;
+    memcpy(c->uv, b->uv, 2 * (size_t)b->nuv * sizeof *c->uv);
+    c->nuv = b->nuv;
+    memcpy(c->o2m, b->o2m, (size_t)c->O->cut.nh * sizeof *c->o2m);
+    return SQ_OK;
 }
 
 /* ---- output ---------------------------------------------------------- */
@@ -1906,13 +1955,10 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
 }
 
 /* One attempt with the options as given (opt and stats are never NULL here;
- * the cone set has passed its checks). face_limit: per quad of Omega, the
- * cell size limit of this round (NULL: none); face_limit_out (NULL: no
- * further round) receives the next round's limits when the map has bad
- * triangles in cells that can still be halved (step 7c), else NULL. */
+ * the cone set has passed its checks), with up to opt->refine rounds of
+ * step 7c. */
 static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                            const uint32_t *face_limit, uint32_t **face_limit_out, sq_param *out,
-                            sq_param_stats *stats, sq_error *err)
+                            sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     double t_start = now_s();
     memset(stats, 0, sizeof *stats);
@@ -1924,8 +1970,8 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     c.keep_flips = opt->allow_flips;
     c.root_step = c.root_surface = SQ_NONE;
     c.S_valence = valence;
-    c.face_limit = face_limit;
-    if (face_limit_out) *face_limit_out = NULL;
+    before_cells saved;
+    memset(&saved, 0, sizeof saved);
     sq_tsurf_init(&c.S);
     sq_cut_graph_init(&c.G);
     sq_pattern_init(&c.pcw);
@@ -1968,32 +2014,43 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     for (uint32_t h = 0; h < c.O->cut.nh; h++) c.o2m[h] = SQ_NONE;
     st = boundary_map(&c);
     if (st) goto done;
-    double t2 = now_s();
-    progress(&c, "cells", 0.55);
-    st = sq_omega_cells_build(c.O, opt->cell_max, face_limit, &c.C, err);
-    if (st == SQ_OK) st = replay_chords(&c);
+    double t2 = now_s(), t_round = t2, t3 = t2; /* t_round: the last round's start */
+    if (opt->refine) st = before_cells_save(&c, &saved);
+    for (uint32_t round = 0; st == SQ_OK; round++) {
+        if (round) {
+            progress(&c, "halving the cells with bad triangles", 0.55);
+            st = before_cells_restore(&c, &saved);
+            if (st) break;
+            t_round = now_s();
+        }
+        progress(&c, "cells", 0.55);
+        st = sq_omega_cells_build(c.O, 0, c.face_limit, &c.C, err);
+        if (st == SQ_OK) st = replay_chords(&c);
+        if (st) break;
+        stats->chords = c.C.nchords, stats->cells = c.C.ncells;
+        if (sq_tsurf_split_blocking(&c.S, 0) < 0 || sec_reserve(&c)) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        t3 = now_s();
+        progress(&c, "tutte", 0.7);
+        free(v_uv);
+        v_uv = malloc((size_t)c.S.nv * sizeof *v_uv);
+        if (!v_uv) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        st = tutte(&c, v_uv);
+        if (st) break;
+        /* step 7b; step 8 checks every triangle */
+        if (repair_flips(&c, v_uv, 50) == 0 || round >= opt->refine) break;
+        uint32_t halved = 0;
+        st = refine_bad_cells(&c, v_uv, &halved); /* step 7c */
+        if (st || halved == 0) break;
+        stats->rounds = round + 1;
+        stats->cells_refined += halved;
+    }
     if (st) goto done;
-    stats->chords = c.C.nchords, stats->cells = c.C.ncells;
-    if (sq_tsurf_split_blocking(&c.S, 0) < 0 || sec_reserve(&c)) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    double t3 = now_s();
-    progress(&c, "tutte", 0.7);
-    v_uv = malloc((size_t)c.S.nv * sizeof *v_uv);
-    if (!v_uv) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    st = tutte(&c, v_uv);
-    if (st) goto done;
-    /* step 7b; step 8 checks every triangle */
-    if (repair_flips(&c, v_uv, 50) > 0 && face_limit_out) {
-        st = refine_bad_cells(&c, v_uv); /* step 7c */
-        if (st) goto done;
-        *face_limit_out = c.face_limit_out;
-        stats->cells_refined = c.refined;
-    }
     double t4 = now_s();
     progress(&c, "check", 0.9);
     st = assemble(&c, v_uv, valence, out, stats);
@@ -2003,7 +2060,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     double t5 = now_s();
     stats->t_tree = t1 - t0;
     stats->t_boundary = t2 - t1;
-    stats->t_cells = t3 - t2;
+    stats->t_cells = t3 - t_round;
     stats->t_tutte = t4 - t3;
     stats->t_check = t5 - t4;
     stats->t_total = t5 - t_start;
@@ -2033,6 +2090,8 @@ done:
     free(c.uv);
     free(hmap);
     free(v_uv);
+    free(c.face_limit);
+    before_cells_free(&saved);
     return st;
 }
 
@@ -2061,25 +2120,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
         if (alternate) o.tree = a % 2 ? SQ_TREE_DOMAIN : SQ_TREE_SURFACE;
         if (a > 0 && o.progress)
             o.progress(o.progress_ctx, alternate && a % 2 ? "retry with the domain's cone tree" : "retry with another cut graph", 0.0);
-        /* step 7c: the same cut graph again with the failed cells halved */
-        uint32_t *limit = NULL, rounds = 0, halved = 0;
-        for (;;) {
-            uint32_t *next = NULL;
-            st = build_once(m, valence, &o, limit, rounds < o.refine ? &next : NULL, out, stats, err);
-            halved += stats->cells_refined;
-            stats->rounds = rounds, stats->cells_refined = halved;
-            if (!next || (st != SQ_ERR_SOLVER && st != SQ_OK)) {
-                free(next);
-                break;
-            }
-            /* allow_flips: a map with flips came back (SQ_OK); rebuild it */
-            if (st == SQ_OK) sq_param_free(out);
-            if (o.progress) o.progress(o.progress_ctx, "halving the cells with bad triangles", 0.0);
-            free(limit);
-            limit = next;
-            rounds++;
-        }
-        free(limit);
+        st = build_once(m, valence, &o, out, stats, err);
         stats->attempts = a + 1;
         stats->seed_used = o.seed;
         if (st != SQ_ERR_SOLVER) break;

@@ -64,13 +64,10 @@ typedef struct sq_param_options {
      * surface and replicated in Q (seed 9.4), or Q's own shortest tree.
      * Default SQ_TREE_SURFACE. */
     int tree;
-    /* Cells of Omega at most cell_max x cell_max unit squares (long cells
-     * halved by extra chords, sq_omega_cells_build); 0: only the chords
-     * the reflex corners need. Default 0. */
-    uint32_t cell_max;
     /* Refinement rounds per attempt (step 7c): when some triangles are bad
      * after the interior map, the cells of Omega holding them are halved
-     * and the map rebuilt on the same cut graph, up to this many times.
+     * and the cells and the map redone on the same cut, tree and boundary
+     * map, up to this many times.
      * Default SQ_PARAM_REFINE (sq_param_options_default); 0: none. */
     uint32_t refine;
     /* Steiner vertices allowed before an attempt gives up (SQ_ERR_SOLVER);

@@ -77,6 +77,30 @@ static int grow(sq_tsurf *S, uint32_t need_v, uint32_t need_f, uint32_t need_h)
     return 0;
 }
 
+int sq_tsurf_copy(sq_tsurf *dst, const sq_tsurf *src)
+{
+    sq_tsurf_free(dst);
+    /* at least one of each, so that no array stays NULL */
+    if (grow(dst, src->nv ? src->nv : 1, src->nf ? src->nf : 1, src->nh ? src->nh : 1)) {
+        sq_tsurf_free(dst);
+        return -1;
+    }
+    size_t nv = src->nv, nf = src->nf, nh = src->nh;
+    memcpy(dst->pos, src->pos, 3 * nv * sizeof *dst->pos);
+    memcpy(dst->v_he, src->v_he, nv * sizeof *dst->v_he);
+    memcpy(dst->v_ncut, src->v_ncut, nv * sizeof *dst->v_ncut);
+    memcpy(dst->valence, src->valence, nv * sizeof *dst->valence);
+    memcpy(dst->f_he, src->f_he, nf * sizeof *dst->f_he);
+    memcpy(dst->vert, src->vert, nh * sizeof *dst->vert);
+    memcpy(dst->next, src->next, nh * sizeof *dst->next);
+    memcpy(dst->face, src->face, nh * sizeof *dst->face);
+    memcpy(dst->twin, src->twin, nh * sizeof *dst->twin);
+    memcpy(dst->kind, src->kind, nh * sizeof *dst->kind);
+    memcpy(dst->label, src->label, nh * sizeof *dst->label);
+    dst->nv = src->nv, dst->nf = src->nf, dst->nh = src->nh, dst->nv_input = src->nv_input;
+    return 0;
+}
+
 sq_status sq_tsurf_from_mesh(const sq_mesh *m, const int32_t *valence, sq_tsurf *S,
                              uint32_t *he_map, sq_error *err)
 {

@@ -69,6 +69,9 @@ static inline uint32_t sq_ts_cw(const sq_tsurf *S, uint32_t h) { return S->next[
 
 void sq_tsurf_init(sq_tsurf *S);
 void sq_tsurf_free(sq_tsurf *S);
+/* dst (initialized; its old content freed) becomes a deep copy of src.
+ * -1 when out of memory (dst left empty). */
+int sq_tsurf_copy(sq_tsurf *dst, const sq_tsurf *src);
 
 /* Copies a closed triangle mesh (faces must be triangles; face f keeps its
  * index, and its halfedges are 3f, 3f+1, 3f+2 from m->f_he[f] on). valence: nv entries or NULL (all 4). he_map (m->nh entries, may

@@ -397,6 +397,60 @@ static void test_split_random(void **state)
     if (L) split_run("libigl/bunny.off", 30000);
 }
 
+/* sq_tsurf_copy: a deep copy, equal array by array, that then changes
+ * independently of its source (the refinement rounds of sq_param restore
+ * the surface from one). */
+static void assert_tsurf_equal(const sq_tsurf *a, const sq_tsurf *b)
+{
+    assert_true(a->nv == b->nv && a->nf == b->nf && a->nh == b->nh && a->nv_input == b->nv_input);
+    assert_memory_equal(a->pos, b->pos, 3 * (size_t)a->nv * sizeof *a->pos);
+    assert_memory_equal(a->v_he, b->v_he, a->nv * sizeof *a->v_he);
+    assert_memory_equal(a->v_ncut, b->v_ncut, a->nv * sizeof *a->v_ncut);
+    assert_memory_equal(a->valence, b->valence, a->nv * sizeof *a->valence);
+    assert_memory_equal(a->f_he, b->f_he, a->nf * sizeof *a->f_he);
+    assert_memory_equal(a->vert, b->vert, a->nh * sizeof *a->vert);
+    assert_memory_equal(a->next, b->next, a->nh * sizeof *a->next);
+    assert_memory_equal(a->face, b->face, a->nh * sizeof *a->face);
+    assert_memory_equal(a->twin, b->twin, a->nh * sizeof *a->twin);
+    assert_memory_equal(a->kind, b->kind, a->nh * sizeof *a->kind);
+    assert_memory_equal(a->label, b->label, a->nh * sizeof *a->label);
+}
+
+static void test_copy(void **state)
+{
+    (void)state;
+    rng_state = 0xC0B1;
+    sq_mesh m;
+    sq_tsurf S, A, B;
+    sq_error err;
+    sq_test_load_mesh(&m, "mpz/knot1.obj");
+    sq_tsurf_init(&S), sq_tsurf_init(&A), sq_tsurf_init(&B);
+    assert_int_equal(sq_tsurf_from_mesh(&m, NULL, &S, NULL, &err), SQ_OK);
+    for (uint32_t i = 0; i < 300; i++) {
+        uint32_t h = rnd(S.nh);
+        if (rnd(2)) sq_tsurf_cut_edge(&S, h, SQ_TS_SEAM, h, S.twin[h]);
+        else assert_int_not_equal(sq_tsurf_split_edge(&S, h, 0.5), SQ_NONE);
+    }
+    double area = total_area(&S);
+    assert_int_equal(sq_tsurf_copy(&A, &S), 0);
+    assert_tsurf_equal(&A, &S);
+    assert_int_equal(sq_tsurf_copy(&B, &S), 0);
+    /* the copy grows and cuts on its own; the source stays as it was */
+    for (uint32_t i = 0; i < 300; i++) {
+        uint32_t h = rnd(A.nh);
+        if (rnd(2)) sq_tsurf_cut_edge(&A, h, SQ_TS_CHORD, h, A.twin[h]);
+        else assert_int_not_equal(sq_tsurf_split_edge(&A, h, 0.25), SQ_NONE);
+    }
+    assert_true(A.nv > S.nv);
+    check_tsurf(&A, sq_mesh_euler(&m), area);
+    assert_tsurf_equal(&B, &S);
+    /* copying over a used surface replaces it */
+    assert_int_equal(sq_tsurf_copy(&A, &S), 0);
+    assert_tsurf_equal(&A, &S);
+    sq_tsurf_free(&S), sq_tsurf_free(&A), sq_tsurf_free(&B);
+    sq_mesh_free(&m);
+}
+
 static void test_from_mesh_rejects_polygons(void **state)
 {
     (void)state;
@@ -1127,6 +1181,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_from_mesh_rejects_polygons),
         cmocka_unit_test(test_split_random),
+        cmocka_unit_test(test_copy),
         cmocka_unit_test(test_boundary_loops),
         cmocka_unit_test(test_route_sector),
         cmocka_unit_test(test_route_cone_free),
