@@ -296,7 +296,7 @@ int sq_cmd_domain(int argc, char **argv)
 
     stage = "domain";
     sq_domain_options opt = {pattern_path ? &pat : NULL,
-                             offset >= 0 ? (uint32_t)offset : SQ_NONE, NULL, 0};
+                             offset >= 0 ? (uint32_t)offset : SQ_NONE, NULL, 0, 0};
     if (sq_domain_build((uint32_t)genus, val, nval, &opt, &D, &err)) goto fail;
     stage = "verify";
     double t1 = sq_now();

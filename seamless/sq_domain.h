@@ -44,6 +44,12 @@ typedef struct sq_domain_options {
     int keep_order;                       /* genus >= 2: the valences' order */
                                           /* is the construction order (must */
                                           /* be admissible; seed 9.2)        */
+    uint32_t g1_split;                    /* genus 1 with keep_order: the    */
+                                          /* last g1_split valences form the */
+                                          /* meta-2-gon T (excess -2), the   */
+                                          /* others the meta-6-gon H, each in*/
+                                          /* the given order; `build` then   */
+                                          /* applies to H only (seed 9.2)    */
 } sq_domain_options;
 
 typedef struct sq_domain {

@@ -80,17 +80,24 @@ static void piece_free(piece *p)
 }
 
 /* Seed 5.2, 5.4: the metapolygon of `n` valences, subdivided; it must have
- * `corners` corners. */
-static sq_status piece_build(piece *p, const uint32_t *val, uint32_t n, uint32_t corners,
-                             sq_error *err)
+ * `corners` corners. keep: val is the construction order (seed 9.2, must
+ * be admissible); build: glue-edge choices (NULL: seed 5.3). */
+static sq_status piece_build(piece *p, const uint32_t *val, uint32_t n, uint32_t corners, int keep,
+                             const sq_build_options *build, sq_error *err)
 {
     memset(p, 0, sizeof *p);
     sq_metapolygon_init(&p->meta);
     p->n = n;
     p->order = malloc(((size_t)n + 1) * sizeof *p->order);
     if (!p->order) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    sq_status st = sq_valence_order_admissible(val, n, p->order, err);
-    if (st == SQ_OK) st = sq_metapolygon_build(&p->meta, p->order, n, NULL, NULL, err);
+    sq_status st = SQ_OK;
+    if (keep) {
+        memcpy(p->order, val, (size_t)n * sizeof *val);
+        st = sq_valence_check_sequence(p->order, n, NULL, err);
+    } else {
+        st = sq_valence_order_admissible(val, n, p->order, err);
+    }
+    if (st == SQ_OK) st = sq_metapolygon_build(&p->meta, p->order, n, build, NULL, err);
     if (st == SQ_OK) st = sq_metapolygon_subdivide(&p->meta, &p->sub, err);
     if (st == SQ_OK && p->sub.ncorner != corners)
         st = sq_error_set(err, SQ_ERR_INTERNAL, "a piece of excess %d has %u corners, not %u",
@@ -499,7 +506,28 @@ sq_status sq_domain_build_genus1(const uint32_t *irr, uint32_t n, const sq_domai
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    uint32_t nmask = split_candidates(irr, n, mask, NSPLIT_MAX);
+    /* seed 9.2 (guided): the caller's split, each piece in its order */
+    const int given = opt && opt->keep_order && opt->g1_split > 0;
+    if (given && opt->g1_split >= n) {
+        st = sq_error_set(err, SQ_ERR_ARGUMENT, "genus 1: a split of %u of the %u cones into T",
+                          opt->g1_split, n);
+        goto done;
+    }
+    uint32_t nmask = 1;
+    if (given) {
+        int64_t ex = 0;
+        for (uint32_t i = n - opt->g1_split; i < n; i++) ex += (int64_t)irr[i] - 4;
+        if (ex != -2) {
+            st = sq_error_set(err, SQ_ERR_ARGUMENT,
+                              "genus 1: the given meta-2-gon's cones have excess %lld, not -2",
+                              (long long)ex);
+            goto done;
+        }
+        memset(mask, 0, n);
+        memset(mask + (n - opt->g1_split), 1, opt->g1_split);
+    } else {
+        nmask = split_candidates(irr, n, mask, NSPLIT_MAX);
+    }
     if (nmask == 0) {
         st = sq_error_set(err, SQ_ERR_ARGUMENT,
                           "genus 1: no subset of the cones has excess -2, so no two-piece "
@@ -512,10 +540,10 @@ sq_status sq_domain_build_genus1(const uint32_t *irr, uint32_t n, const sq_domai
         uint32_t nh = 0, nt = 0;
         for (uint32_t i = 0; i < n; i++)
             if (!m[i]) val[nh++] = irr[i];
-        st = piece_build(&sp->p[0], val, nh, 6, err);
+        st = piece_build(&sp->p[0], val, nh, 6, given, given ? opt->build : NULL, err);
         for (uint32_t i = 0; i < n; i++)
             if (m[i]) val[nt++] = irr[i];
-        if (st == SQ_OK) st = piece_build(&sp->p[1], val, nt, 2, err);
+        if (st == SQ_OK) st = piece_build(&sp->p[1], val, nt, 2, given, NULL, err);
         if (st) {
             piece_free(&sp->p[0]), piece_free(&sp->p[1]);
             goto done;

@@ -81,7 +81,7 @@ typedef struct ctx {
     double *surf_corner_angle; /* k: the cut graph's corners on the circle */
     sq_guide_glue glue;    /* Algorithm 1's chooser: c = step_xy, chosen */
                            /* = its glue edge per step (for rebuilds)     */
-    uint32_t *step_vertex; /* genus >= 2, guided: the surface cone of each */
+    uint32_t *step_vertex; /* genus >= 1, guided: the surface cone of each */
                            /* metapolygon step (seed 9.2, Algorithm 1)     */
     uint32_t *s_tree_next; /* m->nv: the surface tree (sq_guide_surface_tree) */
     uint32_t root_surface; /* the surface tree's root vertex on the cut    */
@@ -184,11 +184,41 @@ static void transition(const sq_omega *O, uint32_t l, const double x[2], double 
 
 /* ---- step 1-3: cut graph, domain, Omega ------------------------------ */
 
-/* Seed 9.2 for genus >= 2: the cut surface in the unit disk, its cones
- * ordered by distance from the centre (prefix condition kept); val (nc
- * valences of the cones in vertex order) is reordered in place, and the
- * surface vertex and disk position of every construction step recorded. */
-static sq_status guided_order(ctx *c, int32_t *val, uint32_t nc)
+/* Genus 1 (seed 6.2 with seed 9.2): the cones of the meta-2-gon T, which
+ * lies on Q's boundary side 5: one valence-2 cone or two valence-3 cones
+ * (every admissible torus cone set but {3, 5} has one, docs/domain.md),
+ * those nearest the circle and, for two, nearest each other in the disk
+ * layout. Sets in_t[i] for the chosen cones (pos: 2 per cone); returns
+ * how many (0: none). */
+static uint32_t choose_t_cones(uint32_t n, const int32_t *val, const double *pos, uint8_t *in_t)
+{
+    double best = HUGE_VAL;
+    uint32_t bi = SQ_NONE, bj = SQ_NONE;
+    for (uint32_t i = 0; i < n; i++) {
+        double di = 1.0 - hypot(pos[2 * i], pos[2 * i + 1]);
+        if (val[i] == 2 && 2 * di < best) best = 2 * di, bi = i, bj = SQ_NONE;
+        if (val[i] != 3) continue;
+        for (uint32_t j = i + 1; j < n; j++) {
+            if (val[j] != 3) continue;
+            double dj = 1.0 - hypot(pos[2 * j], pos[2 * j + 1]);
+            double sc = di + dj + hypot(pos[2 * i] - pos[2 * j], pos[2 * i + 1] - pos[2 * j + 1]);
+            if (sc < best) best = sc, bi = i, bj = j;
+        }
+    }
+    memset(in_t, 0, n);
+    if (bi == SQ_NONE) return 0;
+    in_t[bi] = 1;
+    if (bj != SQ_NONE) in_t[bj] = 1;
+    return bj != SQ_NONE ? 2 : 1;
+}
+
+/* Seed 9.2: the cut surface in the unit disk, its cones ordered by
+ * distance from the centre (prefix condition kept); val (nc valences of
+ * the cones in vertex order) is reordered in place, and the surface vertex
+ * and disk position of every construction step recorded. Genus 1: the
+ * cones of the meta-2-gon (choose_t_cones) go last, the meta-6-gon's in
+ * radial order before them; *nt receives their number (0 for genus >= 2). */
+static sq_status guided_order(ctx *c, int32_t *val, uint32_t nc, uint32_t *nt)
 {
     const sq_mesh *m = c->m;
     const uint32_t k = c->G.pattern.k;
@@ -222,7 +252,32 @@ static sq_status guided_order(ctx *c, int32_t *val, uint32_t nc)
         st = sq_error_set(c->err, SQ_ERR_INTERNAL, "guidance: %u cones, expected %u", n, nc);
         goto done;
     }
-    st = sq_guide_cone_order(nc, val, pos, order, c->err);
+    *nt = 0;
+    if (sq_mesh_genus(m) == 1) {
+        /* H's cones first (radial order among themselves), then T's */
+        uint8_t *in_t = malloc((size_t)nc + 1);
+        int32_t *hv = malloc(((size_t)nc + 1) * sizeof *hv);
+        double *hp = malloc((2 * (size_t)nc + 2) * sizeof *hp);
+        uint32_t *hi = malloc(((size_t)nc + 1) * sizeof *hi), *ho = malloc(((size_t)nc + 1) * sizeof *ho);
+        uint32_t nh = 0;
+        if (!in_t || !hv || !hp || !hi || !ho) {
+            st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        } else if ((*nt = choose_t_cones(nc, val, pos, in_t)) == 0) {
+            st = sq_error_set(c->err, SQ_ERR_ARGUMENT,
+                              "genus 1: no cone of valence 2 and no two of valence 3 (the cone set "
+                              "admits no two-piece domain)");
+        } else {
+            for (uint32_t i = 0; i < nc; i++)
+                if (!in_t[i]) hi[nh] = i, hv[nh] = val[i], hp[2 * nh] = pos[2 * i], hp[2 * nh + 1] = pos[2 * i + 1], nh++;
+            st = sq_guide_cone_order(nh, hv, hp, ho, c->err);
+            for (uint32_t i = 0; st == SQ_OK && i < nh; i++) order[i] = hi[ho[i]];
+            for (uint32_t i = 0, t = nh; st == SQ_OK && i < nc; i++)
+                if (in_t[i]) order[t++] = i;
+        }
+        free(in_t), free(hv), free(hp), free(hi), free(ho);
+    } else {
+        st = sq_guide_cone_order(nc, val, pos, order, c->err);
+    }
     if (st) goto done;
     for (uint32_t i = 0; i < nc; i++) {
         v2[i] = val[order[i]];
@@ -241,9 +296,10 @@ done:
 }
 
 static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt);
+static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt);
 static sq_status step_q_vertices(ctx *c, uint32_t *qv);
 
-/* Seed 9.4 (guided, genus >= 2): the cone tree chosen on the surface in
+/* Seed 9.4 (guided, genus >= 1): the cone tree chosen on the surface in
  * radial order (the steps' order) and replicated in Q. SQ_ERR_SOLVER when
  * either side is blocked: the caller then takes Q's own shortest tree. */
 static sq_status guided_tree(ctx *c)
@@ -394,24 +450,29 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     const int mode = c->opt->guidance;
     c->guided = mode == SQ_GUIDE_ON || (mode == SQ_GUIDE_AUTO && genus >= 2);
     if (st_out) st_out->guided = c->guided;
-    if (genus >= 2 && c->guided) {
+    if (genus >= 1 && c->guided) {
         /* seed 9.2: cones in the order of their distance from the centre
          * of the cut surface's disk layout, each glued where the layout of
-         * the growing metapolygon is closest to it (Algorithm 1) */
-        st = guided_order(c, val, nc);
+         * the growing metapolygon is closest to it (Algorithm 1); genus 1:
+         * for the meta-6-gon, the meta-2-gon's cones chosen near the
+         * circle */
+        uint32_t nt = 0;
+        st = guided_order(c, val, nc, &nt);
         if (st) goto done;
         c->glue.c = c->step_xy;
         bopt.chooser = sq_guide_glue_chooser;
         bopt.chooser_user = &c->glue;
         dopt.build = &bopt;
         dopt.keep_order = 1;
+        dopt.g1_split = nt;
     }
     st = sq_domain_build(genus, val, nc, &dopt, c->D, err);
     if (st) goto done;
     if (st_out) st_out->quads_unpadded = c->D->quads_unpadded, st_out->quads_added = c->D->quads_added;
     c->k = c->D->k;
     st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, err);
-    if (st == SQ_OK && c->step_vertex) st = align_corners(c, val, nc, &dopt);
+    if (st == SQ_OK && c->step_vertex && genus == 1) st = align_genus1(c, val, nc, &dopt);
+    else if (st == SQ_OK && c->step_vertex) st = align_corners(c, val, nc, &dopt);
     if (st) goto done;
     double t2 = now_s();
     progress(c, "omega", 0.2);
@@ -558,6 +619,7 @@ static sq_status step_q_vertices(ctx *c, uint32_t *qv)
     }
     uint32_t j = 0;
     for (uint32_t f = 0; f < M->nf; f++) mstep[f] = M->f_valence[f] != 4 ? j++ : SQ_NONE;
+    const uint32_t nh = j; /* genus 1: steps nh.. are the meta-2-gon's cones */
     for (uint32_t s = 0; s < c->D->ncones; s++) qv[s] = SQ_NONE;
     for (uint32_t h = 0; h < Q->nh; h++)
         if (Q->he_face[h] == SQ_NONE) qbnd[Q->he_vert[h]] = 1;
@@ -565,6 +627,9 @@ static sq_status step_q_vertices(ctx *c, uint32_t *qv)
         if (Q->v_nface[v] == 4 || qbnd[v]) continue;
         uint32_t f = Q->he_face[Q->v_he[v]];
         uint32_t s = f != SQ_NONE && f < c->D->nf_unpadded ? mstep[c->D->f_meta_face[f]] : SQ_NONE;
+        if (s == SQ_NONE && f != SQ_NONE && c->D->genus == 1) /* a cone of T: its first free step */
+            for (uint32_t t = nh; t < c->D->ncones && s == SQ_NONE; t++)
+                if (qv[t] == SQ_NONE && c->D->order[t] == Q->v_nface[v]) s = t;
         if (s == SQ_NONE || s >= c->D->ncones || Q->v_nface[v] != c->D->order[s] || qv[s] != SQ_NONE)
             st = sq_error_set(c->err, SQ_ERR_INTERNAL, "guidance: cone vertex %u of Q has no step", v);
         else
@@ -659,6 +724,116 @@ done:
     return st;
 }
 
+/* How well the domain c->D fits the surface (genus 1, guided): Q laid out
+ * with the meta-6-gon's cones pinned to their surface cones' disk
+ * positions (the first ncones - nt steps); *swap: whether the two cones of
+ * the meta-2-gon (nt = 2) fit better exchanged; *r_out: of the cyclic
+ * side correspondences valid for the cut's word, the one whose corners lie
+ * at the most similar angles. Returns the squared angle differences plus
+ * the squared distances of T's cones from their surface cones (HUGE_VAL
+ * on failure, with st set). */
+static double genus1_fit(ctx *c, uint32_t nt, uint32_t *r_out, int *swap, sq_status *st)
+{
+    const sq_domain *D = c->D;
+    const sq_metapolygon *Q = &D->quads;
+    const uint32_t k = D->k, nh = D->ncones - nt;
+    uint32_t *qv = malloc(((size_t)D->ncones + 1) * sizeof *qv);
+    double *xy = malloc((2 * (size_t)Q->nv + 2) * sizeof *xy);
+    double best = HUGE_VAL;
+    *swap = 0;
+    *st = qv && xy ? SQ_OK : sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    if (*st == SQ_OK) *st = step_q_vertices(c, qv);
+    if (*st == SQ_OK) *st = sq_guide_metapolygon_layout(Q, c->step_xy, nh, qv, xy, c->err);
+    if (*st == SQ_OK && k == 6) {
+        double dt[2] = {0, 0};
+        for (int w = 0; w < 2; w++)
+            for (uint32_t t = 0; t < nt; t++) {
+                uint32_t q = qv[nh + (nt == 2 && w ? 1 - t : t)];
+                dt[w] += pow(xy[2 * q] - c->step_xy[2 * (nh + t)], 2) +
+                         pow(xy[2 * q + 1] - c->step_xy[2 * (nh + t) + 1], 2);
+            }
+        *swap = nt == 2 && dt[1] < dt[0];
+        for (uint32_t r = 0; r < k; r++) {
+            int valid = 1;
+            for (uint32_t j = 0; j < k && valid; j++)
+                valid = c->pcw.partner[(j + r) % k] == (D->pattern.partner[j] + r) % k;
+            if (!valid) continue;
+            double cost = dt[*swap];
+            for (uint32_t i = 0; i < k; i++) {
+                uint32_t v = D->corner_vert[i];
+                double d = ang_diff(atan2(xy[2 * v + 1], xy[2 * v]), c->surf_corner_angle[(k - (i + r) % k) % k]);
+                cost += d * d;
+            }
+            if (cost < best) best = cost, *r_out = r;
+        }
+    }
+    free(qv);
+    free(xy);
+    return best;
+}
+
+/* Seed 9.2 and seed 4 for genus 1: of the 6 ways to glue the meta-2-gon T
+ * to the meta-6-gon H (the pairings of docs/domain.md, "Genus 1"), H
+ * rebuilt from Algorithm 1's recorded glue edges, and of the cyclic side
+ * correspondences with the cut surface, the pair that fits the surface
+ * best (genus1_fit); T's two cones are matched to theirs by position. */
+static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt)
+{
+    const uint32_t nt = dopt->g1_split;
+    uint32_t best_r = c->r, r = 0;
+    int best_swap = 0, swap = 0;
+    sq_status st = SQ_OK;
+    double best = genus1_fit(c, nt, &r, &swap, &st);
+    if (st) return st;
+    if (best < HUGE_VAL) best_r = r, best_swap = swap;
+    c->glue.chosen[0] = SQ_NONE;
+    sq_build_options again;
+    memset(&again, 0, sizeof again);
+    again.glue_he = c->glue.chosen;
+    const sq_build_options *first = dopt->build;
+    const uint32_t first_offset = dopt->offset;
+    dopt->build = &again;
+    for (uint32_t p = 0; p < 6 && st == SQ_OK; p++) {
+        if (p == c->D->offset) continue;
+        sq_domain *D2 = calloc(1, sizeof *D2), *keep = c->D;
+        if (!D2) {
+            st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        sq_domain_init(D2);
+        dopt->offset = p;
+        double fit = HUGE_VAL;
+        if (sq_domain_build(1, val, nc, dopt, D2, NULL) == SQ_OK && !D2->slid) {
+            c->D = D2;
+            fit = genus1_fit(c, nt, &r, &swap, &st);
+            c->D = keep;
+        }
+        if (st == SQ_OK && fit < best) {
+            best = fit, best_r = r, best_swap = swap;
+            sq_domain_free(keep);
+            free(keep);
+            c->D = D2;
+        } else {
+            sq_domain_free(D2);
+            free(D2);
+        }
+    }
+    dopt->build = first; /* `again` lives on this stack frame only */
+    dopt->offset = first_offset;
+    if (st) return st;
+    c->r = best_r;
+    if (best_swap) {
+        const uint32_t a = c->D->ncones - 2, b = a + 1;
+        uint32_t tv = c->step_vertex[a];
+        c->step_vertex[a] = c->step_vertex[b], c->step_vertex[b] = tv;
+        for (int e = 0; e < 2; e++) {
+            double tx = c->step_xy[2 * a + e];
+            c->step_xy[2 * a + e] = c->step_xy[2 * b + e], c->step_xy[2 * b + e] = tx;
+        }
+    }
+    return SQ_OK;
+}
+
 /* Genus 0 and 1 with SQ_GUIDE_ON: the cut surface and Q are laid out in
  * the unit disk with corresponding corners at the same angles and Q's
  * cones matched to the surface's by position (sq_guide.h); Q corner i is
@@ -730,7 +905,7 @@ done:
 }
 
 /* c->q_target (Q->nv): the surface cone each cone of Q stands for. After
- * Algorithm 1 (genus >= 2) that is the cone of the step that made it;
+ * Algorithm 1 (genus >= 1) that is the cone of the step that made it;
  * otherwise the nearest one in the disk layouts (targets_by_matching). */
 static sq_status guide(ctx *c)
 {
@@ -2112,9 +2287,11 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
     if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
     if (st) return st;
-    /* SQ_TREE_ALTERNATE with guidance (genus >= 2): each seed twice, the
-     * surface tree, then Q's tree */
-    const int alternate = o.guidance != SQ_GUIDE_OFF && sq_mesh_genus(m) >= 2 && o.tree == SQ_TREE_ALTERNATE;
+    /* SQ_TREE_ALTERNATE with guidance (genus >= 2, or genus 1 with
+     * SQ_GUIDE_ON): each seed twice, the surface tree, then Q's tree */
+    const int g = sq_mesh_genus(m);
+    const int with_tree = o.guidance == SQ_GUIDE_ON ? g >= 1 : o.guidance == SQ_GUIDE_AUTO && g >= 2;
+    const int alternate = with_tree && o.tree == SQ_TREE_ALTERNATE;
     for (uint32_t a = 0; a < n; a++) {
         o.seed = seed0 + (alternate ? a / 2 : a);
         if (alternate) o.tree = a % 2 ? SQ_TREE_DOMAIN : SQ_TREE_SURFACE;

@@ -7,7 +7,7 @@
  *  1. cut graph of M (seed 7, 9.1; sq_cut_graph.h): a disk M^c whose side
  *     pattern is handed to the domain construction;
  *  2. domain Q for that pattern and the cone valences (sq_domain.h); with
- *     guidance (seed 9.2, genus >= 2; sq_guide.h) its cones are ordered and
+ *     guidance (seed 9.2, genus >= 1; sq_guide.h) its cones are ordered and
  *     glued after a disk layout of M^c, and its corners matched to M^c's at
  *     similar angles, so that each cone of Q stands for one surface cone;
  *  3. cone tree in Q and the flat domain Omega (sq_omega.h); guided, the
@@ -60,7 +60,7 @@ typedef struct sq_param_options {
      * budget) are retried; the result is the first map that passes every
      * exact check. */
     uint32_t attempts;
-    /* The cone tree with guidance (genus >= 2), SQ_TREE_*: chosen on the
+    /* The cone tree with guidance (genus >= 1), SQ_TREE_*: chosen on the
      * surface and replicated in Q (seed 9.4), or Q's own shortest tree.
      * Default SQ_TREE_SURFACE. */
     int tree;
@@ -77,7 +77,7 @@ typedef struct sq_param_options {
 
 #define SQ_PARAM_REFINE 8
 
-/* Cone tree modes (sq_param_options.tree; only with guidance, genus >= 2):
+/* Cone tree modes (sq_param_options.tree; only with guidance, genus >= 1):
  *  SQ_TREE_SURFACE: the surface tree (seed 9.4), Q's tree only where the
  *    surface tree cannot be replicated in Q. It passes most often (random
  *    cone sets: 38 of 45, against 34 with Q's tree), but where both pass,
@@ -98,9 +98,13 @@ enum { SQ_TREE_SURFACE = 0, SQ_TREE_DOMAIN = 1, SQ_TREE_ALTERNATE = 2 };
  *    glued where the growing metapolygon's layout is closest to them (seed
  *    9.2, Algorithm 1), so each cone of Q stands for its own surface cone;
  *    of the cyclic correspondences of Q's corners with the cut graph's, the
- *    one whose corners lie at the most similar angles is used. Genus 0 and
- *    1: Q as for OFF, laid out in the disk too, each cone of Q matched to
- *    the nearest surface cone of its valence. */
+ *    one whose corners lie at the most similar angles is used. Genus 1
+ *    (two pieces, seed 6.2): the meta-2-gon takes a valence-2 cone or two
+ *    valence-3 cones near the circle, the meta-6-gon the others by
+ *    Algorithm 1; of its 6 gluings to the meta-2-gon and the cyclic
+ *    correspondences, the pair whose corners fit best. Genus 0: Q as for
+ *    OFF, laid out in the disk too, each cone of Q matched to the nearest
+ *    surface cone of its valence. */
 enum { SQ_GUIDE_AUTO = 0, SQ_GUIDE_OFF = 1, SQ_GUIDE_ON = 2 };
 
 void sq_param_options_default(sq_param_options *opt);

@@ -138,6 +138,19 @@ passes_at() {
 passes_at sculpt 20 --tree domain
 passes_at holes3 111
 
+# --- genus 1 with --guide on: Algorithm 1 for the meta-6-gon, the
+# meta-2-gon's cones near the circle (seed 9.2 per piece): mpz/knot1
+# passes with the surface tree, in fewer faces than unguided ------------------
+knot=$shared/data/mpz/knot1.obj
+"$bin" param "$knot" --cones "$shared/data/mpz/knot1_Th_hat" -o "$tmp/k_on.obj" --seed 1 --attempts 1 \
+  --guide on --json --quiet >"$tmp/k_on.json" 2>"$tmp/k_on.err"
+if [ $? -eq 0 ] && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["guided"] and j["surface_tree"] and j["genus"]==1 and j["faces_out"] < 8000, j' "$tmp/k_on.json" \
+    && python3 "$referee" "$knot" "$shared/data/mpz/knot1_Th_hat" "$tmp/k_on.obj" --integer >"$tmp/k_on.ref" 2>&1; then
+  ok; echo "PASS --guide on: mpz/knot1 (genus 1) seed 1: $(tail -1 "$tmp/k_on.ref")"
+else
+  bad "--guide on (genus 1): $(tail -1 "$tmp/k_on.err") $(cat "$tmp/k_on.json")"
+fi
+
 # --- refinement rounds (step 7c): mpz/helmet seed 1 fails without them and
 # passes with them; --json counts the rounds, the text report names them --
 helmet=$shared/data/mpz/helmet.obj
@@ -202,7 +215,6 @@ done
 # --- errors: exit code, message, nothing written ------------------------------
 nothing_written() { [ -z "$(ls -A "$tmp/e" 2>/dev/null)" ]; }
 mkdir -p "$tmp/e"
-knot=$shared/data/mpz/knot1.obj
 knot_cones=$shared/data/mpz/knot1_Th_hat
 expect() { # expect NAME CODE SUBSTRING -- ARGS...
   local name=$1 code=$2 sub=$3

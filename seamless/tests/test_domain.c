@@ -129,7 +129,7 @@ static void test_random_patterns(void **state)
             }
             int32_t v[1024];
             uint32_t n = random_cones(g, v, 1024);
-            sq_domain_options opt = {&pat, SQ_NONE, NULL, 0};
+            sq_domain_options opt = {&pat, SQ_NONE, NULL, 0, 0};
             sq_domain D;
             if (sq_domain_build(g, v, n, &opt, &D, &err))
                 fail_msg("genus %u random pattern %u: %s", g, c, err.msg);
@@ -172,7 +172,7 @@ static void test_errors(void **state)
     sq_pattern_init(&pat);
     sq_error err;
     assert_int_equal(sq_pattern_canonical(3, &pat, &err), SQ_OK);
-    sq_domain_options opt = {&pat, SQ_NONE, NULL, 0};
+    sq_domain_options opt = {&pat, SQ_NONE, NULL, 0, 0};
     int32_t g2[] = {6, 6, 6, 6};
     sq_domain D;
     assert_int_equal(sq_domain_build(2, g2, 4, &opt, &D, &err), SQ_ERR_ARGUMENT);

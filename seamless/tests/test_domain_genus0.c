@@ -292,7 +292,7 @@ static void test_errors(void **state)
     sq_pattern pat;
     sq_pattern_init(&pat);
     assert_int_equal(sq_pattern_torus(&pat, NULL), SQ_OK);
-    sq_domain_options opt = {&pat, SQ_NONE, NULL, 0};
+    sq_domain_options opt = {&pat, SQ_NONE, NULL, 0, 0};
     static const int32_t cube[] = {3, 3, 3, 3, 3, 3, 3, 3};
     assert_int_equal(sq_domain_build(0, cube, 8, &opt, &D, &err), SQ_ERR_ARGUMENT);
     assert_non_null(strstr(err.msg, "genus 0"));

@@ -419,7 +419,7 @@ static void test_errors(void **state)
     sq_pattern torus;
     sq_pattern_init(&torus);
     assert_int_equal(sq_pattern_torus(&torus, NULL), SQ_OK);
-    sq_domain_options opt = {&torus, SQ_NONE, NULL, 0};
+    sq_domain_options opt = {&torus, SQ_NONE, NULL, 0, 0};
     int32_t v[] = {2, 6};
     assert_int_equal(sq_domain_build(1, v, 2, &opt, &D, &err), SQ_ERR_ARGUMENT);
     assert_non_null(strstr(err.msg, "two pieces"));
@@ -428,18 +428,92 @@ static void test_errors(void **state)
     assert_int_equal(sq_domain_verify(&D, NULL, 0, &err), SQ_OK);
     sq_domain_free(&D);
     sq_pattern_free(&torus);
-    sq_domain_options bad = {NULL, 6, NULL, 0};
+    sq_domain_options bad = {NULL, 6, NULL, 0, 0};
     assert_int_equal(sq_domain_build(1, v, 2, &bad, &D, &err), SQ_ERR_ARGUMENT);
     assert_non_null(strstr(err.msg, "offset"));
     /* every fixed offset (pattern) works on its own */
     for (uint32_t o = 0; o < 6; o++) {
-        sq_domain_options fix = {NULL, o, NULL, 0};
+        sq_domain_options fix = {NULL, o, NULL, 0, 0};
         int32_t w[] = {3, 3, 5, 5, 2, 6};
         if (sq_domain_build(1, w, 6, &fix, &D, &err)) fail_msg("offset %u: %s", o, err.msg);
         assert_int_equal(D.offset, o);
         if (sq_domain_verify(&D, w, 6, &err)) fail_msg("offset %u: verify: %s", o, err.msg);
         sq_domain_free(&D);
     }
+}
+
+/* Seed 9.2 for the two pieces (sq_domain_options.g1_split with
+ * keep_order, as guided `param` builds them): the caller's split and
+ * orders are kept, H's irregular faces follow its order, T's cones are the
+ * cones of Q outside H's subdivision, every pairing works; a split of the
+ * wrong excess or size is refused. */
+static void test_given_split(void **state)
+{
+    (void)state;
+    sq_error err;
+    const uint32_t cases = SANITIZED ? 60 : 300;
+    uint32_t built = 0;
+    for (uint32_t c = 0; c < cases; c++) {
+        int32_t v[128], w[128];
+        uint32_t n = random_torus_cones(v, 128), nh = 0, nt = 0;
+        /* T: a valence-2 cone, else two valence-3 cones (as param picks) */
+        uint32_t t2 = SQ_NONE, t3a = SQ_NONE, t3b = SQ_NONE;
+        for (uint32_t i = 0; i < n; i++) {
+            if (v[i] == 2 && t2 == SQ_NONE) t2 = i;
+            if (v[i] == 3) {
+                if (t3a == SQ_NONE) t3a = i;
+                else if (t3b == SQ_NONE) t3b = i;
+            }
+        }
+        uint32_t hv[128];
+        for (uint32_t i = 0; i < n; i++) {
+            int in_t = t2 != SQ_NONE ? i == t2 : (i == t3a || i == t3b);
+            if (!in_t) hv[nh++] = (uint32_t)v[i];
+        }
+        nt = n - nh;
+        if (nt == 0 || nh == 0) continue;
+        uint32_t ho[128];
+        if (sq_valence_order_admissible(hv, nh, ho, &err)) fail_msg("case %u: %s", c, err.msg);
+        for (uint32_t i = 0; i < nh; i++) w[i] = (int32_t)ho[i];
+        for (uint32_t i = 0; i < nt; i++) w[nh + i] = t2 != SQ_NONE ? 2 : 3;
+        for (uint32_t o = 0; o < 6; o += (c % 3 ? 6 : 1)) {
+            sq_domain_options opt = {NULL, c % 3 ? SQ_NONE : o, NULL, 1, nt};
+            sq_domain D;
+            if (sq_domain_build(1, w, n, &opt, &D, &err)) fail_msg("case %u offset %u: %s", c, o, err.msg);
+            if (sq_domain_verify(&D, w, n, &err)) fail_msg("case %u: verify: %s", c, err.msg);
+            assert_true(sq_domain_glued_is_simple(&D));
+            for (uint32_t i = 0; i < n; i++) assert_int_equal(D.order[i], (uint32_t)w[i]);
+            uint32_t j = 0;
+            for (uint32_t f = 0; f < D.meta.nf; f++)
+                if (D.meta.f_valence[f] != 4) assert_int_equal(D.meta.f_valence[f], (uint32_t)w[j++]);
+            assert_int_equal(j, nh);
+            /* T's cones: the irregular vertices of Q outside H's quads */
+            const sq_metapolygon *Q = &D.quads;
+            uint32_t tcount = 0;
+            for (uint32_t x = 0; x < Q->nv; x++) {
+                uint32_t f = Q->he_face[Q->v_he[x]];
+                if (Q->v_nface[x] == 4 || f == SQ_NONE || f < D.nf_unpadded) continue;
+                int bnd = 0;
+                for (uint32_t h = 0; h < Q->nh; h++) bnd |= Q->he_face[h] == SQ_NONE && Q->he_vert[h] == x;
+                if (bnd) continue;
+                assert_int_equal(Q->v_nface[x], (uint32_t)w[nh]);
+                tcount++;
+            }
+            assert_int_equal(tcount, nt);
+            sq_domain_free(&D);
+            built++;
+        }
+    }
+    assert_true(built >= cases / 2);
+    /* a given T of excess != -2, or holding every cone, is refused */
+    int32_t bad[] = {3, 5, 5, 3, 3, 5};
+    sq_domain_options o1 = {NULL, SQ_NONE, NULL, 1, 1};
+    sq_domain D;
+    assert_int_equal(sq_domain_build(1, bad, 6, &o1, &D, &err), SQ_ERR_ARGUMENT);
+    assert_non_null(strstr(err.msg, "excess"));
+    sq_domain_options o7 = {NULL, SQ_NONE, NULL, 1, 6};
+    assert_int_equal(sq_domain_build(1, bad, 6, &o7, &D, &err), SQ_ERR_ARGUMENT);
+    assert_non_null(strstr(err.msg, "split"));
 }
 
 int main(void)
@@ -449,6 +523,7 @@ int main(void)
         cmocka_unit_test(test_configuration_random_lengths),
         cmocka_unit_test(test_configuration_random_cones),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_given_split),
         cmocka_unit_test(test_fixed_sets),
         cmocka_unit_test(test_random_sets),
     };

@@ -299,7 +299,7 @@ static void test_algorithm1_domains(void **state)
         uint32_t chosen[512];
         sq_guide_glue gg = {cxy, chosen, NULL, 0, 0, 0};
         sq_build_options bopt = {NULL, sq_guide_glue_chooser, &gg};
-        sq_domain_options dopt = {NULL, SQ_NONE, &bopt, 1};
+        sq_domain_options dopt = {NULL, SQ_NONE, &bopt, 1, 0};
         sq_domain D;
         if (sq_domain_build(g, vo, n, &dopt, &D, &err)) fail_msg("case %u genus %u: %s", c, g, err.msg);
         if (sq_domain_verify(&D, vo, n, &err)) fail_msg("case %u: verify: %s", c, err.msg);
@@ -316,7 +316,7 @@ static void test_algorithm1_domains(void **state)
         /* the recorded choices rebuild the same metapolygon */
         chosen[0] = SQ_NONE;
         sq_build_options again = {chosen, NULL, NULL};
-        sq_domain_options dopt2 = {NULL, D.offset, &again, 1};
+        sq_domain_options dopt2 = {NULL, D.offset, &again, 1, 0};
         sq_domain D2;
         if (sq_domain_build(g, vo, n, &dopt2, &D2, &err)) fail_msg("case %u: rebuild: %s", c, err.msg);
         assert_int_equal(D2.meta.nf, D.meta.nf);
@@ -462,7 +462,7 @@ static void test_cone_tree_guided(void **state)
         int32_t v[512];
         uint32_t n = random_cones(g, v, 512);
         sq_domain D;
-        sq_domain_options dopt = {NULL, SQ_NONE, NULL, 0};
+        sq_domain_options dopt = {NULL, SQ_NONE, NULL, 0, 0};
         sq_error err = {0};
         if (sq_domain_build(g, v, n, &dopt, &D, &err)) fail_msg("case %u: %s", c, err.msg);
         const sq_metapolygon *Q = &D.quads;
