@@ -450,7 +450,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     const int mode = c->opt->guidance;
     c->guided = mode == SQ_GUIDE_ON || (mode == SQ_GUIDE_AUTO && genus >= 2);
     if (st_out) st_out->guided = c->guided;
-    if (genus >= 1 && c->guided) {
+    if (c->guided && (genus >= 2 || (genus == 1 && nc > 0))) {
         /* seed 9.2: cones in the order of their distance from the centre
          * of the cut surface's disk layout, each glued where the layout of
          * the growing metapolygon is closest to it (Algorithm 1); genus 1:
@@ -834,9 +834,9 @@ static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, sq_domain
     return SQ_OK;
 }
 
-/* Genus 0 and 1 with SQ_GUIDE_ON: the cut surface and Q are laid out in
- * the unit disk with corresponding corners at the same angles and Q's
- * cones matched to the surface's by position (sq_guide.h); Q corner i is
+/* Genus 0 (and a torus without cones) with SQ_GUIDE_ON: the cut surface
+ * and Q are laid out in the unit disk with corresponding corners at the
+ * same angles and Q's cones matched to the surface's by position (sq_guide.h); Q corner i is
  * the start of counterclockwise surface side (k - (i + r) % k) % k, as in
  * cut_surface. Where the cones do not pair up (some on the cut or on Q's
  * boundary), c->q_target is dropped and the tree is unguided. */

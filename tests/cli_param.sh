@@ -150,6 +150,17 @@ if [ $? -eq 0 ] && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); 
 else
   bad "--guide on (genus 1): $(tail -1 "$tmp/k_on.err") $(cat "$tmp/k_on.json")"
 fi
+# a torus without cones has no pieces: --guide on still maps it
+torus=$shared/data/gpjs/torus.obj
+python3 -c 'import math,sys; print("\n".join(["%.17g" % (2 * math.pi)] * int(sys.argv[1])))' \
+  "$(grep -c '^v ' "$torus")" >"$tmp/torus0_Th_hat"
+if "$bin" param "$torus" --cones "$tmp/torus0_Th_hat" -o "$tmp/t0.obj" --attempts 1 --guide on --quiet \
+    >/dev/null 2>"$tmp/t0.err" \
+    && python3 "$referee" "$torus" "$tmp/torus0_Th_hat" "$tmp/t0.obj" --integer >"$tmp/t0.ref" 2>&1; then
+  ok; echo "PASS --guide on: gpjs/torus without cones: $(tail -1 "$tmp/t0.ref")"
+else
+  bad "--guide on, torus without cones: $(tail -1 "$tmp/t0.err")"
+fi
 
 # --- refinement rounds (step 7c): mpz/helmet seed 1 fails without them and
 # passes with them; --json counts the rounds, the text report names them --
