@@ -208,6 +208,12 @@ sq_status sq_cut_graph_build_low_genus(const sq_mesh *m, const uint8_t *cone,
 sq_status sq_cut_graph_domain_offset(const sq_cut_graph *G, const sq_pattern *q_pattern,
                                      uint32_t *offset, sq_error *err);
 
+/* 1 if shift r pairs the sides as Q does: cw.partner[(j + r) % k] ==
+ * (q.partner[j] + r) % k for every j (cw: the surface's word read
+ * clockwise, sq_pattern_reversed; both with k = q->k sides). The test of
+ * sq_cut_graph_domain_offset, for callers that choose r themselves. */
+int sq_cut_graph_shift_pairs(const sq_pattern *cw, const sq_pattern *q, uint32_t r);
+
 #ifdef __cplusplus
 }
 #endif

@@ -399,6 +399,15 @@ sq_status sq_cut_graph_build_low_genus(const sq_mesh *m, const uint8_t *cone,
 
 /* ---- side correspondence with Q ----------------------------------------- */
 
+int sq_cut_graph_shift_pairs(const sq_pattern *cw, const sq_pattern *q, uint32_t r)
+{
+    const uint32_t k = q->k;
+    for (uint32_t j = 0; j < k; ++j)
+        if (cw->partner[(j + r) % k] != (q->partner[j] + r) % k)
+            return 0;
+    return 1;
+}
+
 sq_status sq_cut_graph_domain_offset(const sq_cut_graph *G, const sq_pattern *q, uint32_t *offset,
                                      sq_error *err)
 {
@@ -414,15 +423,11 @@ sq_status sq_cut_graph_domain_offset(const sq_cut_graph *G, const sq_pattern *q,
         return st;
     uint32_t first = SQ_NONE, with_straight = SQ_NONE;
     for (uint32_t r = 0; r < k && with_straight == SQ_NONE; ++r) {
-        int ok = 1, straight_ok = 1;
-        for (uint32_t j = 0; j < k && ok; ++j) {
-            const uint32_t s = (j + r) % k;
-            ok = cw.partner[s] == (q->partner[j] + r) % k;
-            const uint8_t qs = q->straight ? q->straight[j] : 0;
-            straight_ok &= cw.straight[s] == qs;
-        }
-        if (!ok)
+        if (!sq_cut_graph_shift_pairs(&cw, q, r))
             continue;
+        int straight_ok = 1;
+        for (uint32_t j = 0; j < k; ++j)
+            straight_ok &= cw.straight[(j + r) % k] == (q->straight ? q->straight[j] : 0);
         if (first == SQ_NONE)
             first = r;
         if (straight_ok)

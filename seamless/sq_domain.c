@@ -200,6 +200,13 @@ int sq_domain_glued_is_simple(const sq_domain *D)
     return st == SQ_OK;
 }
 
+sq_status sq_domain_order(const uint32_t *val, uint32_t n, int keep, uint32_t *out, sq_error *err)
+{
+    if (!keep) return sq_valence_order_admissible(val, n, out, err);
+    memmove(out, val, (size_t)n * sizeof *val);
+    return sq_valence_check_sequence(out, n, NULL, err);
+}
+
 sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncones,
                           const sq_domain_options *opt, sq_domain *D, sq_error *err)
 {
@@ -230,12 +237,7 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
         return SQ_OK;
     }
     /* seed 5.2: positive excess first */
-    if (opt && opt->keep_order) {
-        memcpy(D->order, irr, (size_t)n * sizeof *irr);
-        st = sq_valence_check_sequence(D->order, n, NULL, err);
-    } else {
-        st = sq_valence_order_admissible(irr, n, D->order, err);
-    }
+    st = sq_domain_order(irr, n, opt && opt->keep_order, D->order, err);
     free(irr);
     if (st) goto fail;
 

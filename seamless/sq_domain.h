@@ -41,7 +41,8 @@ typedef struct sq_domain_options {
                                           /* i = metapolygon side (i + offset) */
                                           /* mod k; SQ_NONE: best of all k      */
     const struct sq_build_options *build; /* glue-edge choices; NULL: seed 5.3 */
-    int keep_order;                       /* genus >= 2: the valences' order */
+    int keep_order;                       /* genus >= 2 (genus 1: with       */
+                                          /* g1_split): the valences' order  */
                                           /* is the construction order (must */
                                           /* be admissible; seed 9.2)        */
     uint32_t g1_split;                    /* genus 1 with keep_order: the    */

@@ -46,7 +46,6 @@
 #include "sq_domain_genus1.h"
 #include "sq_metapolygon_subdivide.h"
 #include "sq_padding.h"
-#include "sq_valence_order.h"
 
 #define NPAT_MAX 8u     /* patterns of (6, 2) sides: 6                    */
 #define NSPLIT_MAX 40u  /* candidate splits of the cones                 */
@@ -90,13 +89,7 @@ static sq_status piece_build(piece *p, const uint32_t *val, uint32_t n, uint32_t
     p->n = n;
     p->order = malloc(((size_t)n + 1) * sizeof *p->order);
     if (!p->order) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    sq_status st = SQ_OK;
-    if (keep) {
-        memcpy(p->order, val, (size_t)n * sizeof *val);
-        st = sq_valence_check_sequence(p->order, n, NULL, err);
-    } else {
-        st = sq_valence_order_admissible(val, n, p->order, err);
-    }
+    sq_status st = sq_domain_order(val, n, keep, p->order, err);
     if (st == SQ_OK) st = sq_metapolygon_build(&p->meta, p->order, n, build, NULL, err);
     if (st == SQ_OK) st = sq_metapolygon_subdivide(&p->meta, &p->sub, err);
     if (st == SQ_OK && p->sub.ncorner != corners)

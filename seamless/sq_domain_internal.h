@@ -15,6 +15,11 @@ sq_status sq_domain_build_genus0(const uint32_t *irr, uint32_t n, const sq_domai
 sq_status sq_domain_build_genus1(const uint32_t *irr, uint32_t n, const sq_domain_options *opt,
                                  sq_domain *D, sq_error *err);
 
+/* The construction order of n valences (seed 5.2; sq_domain.c): with
+ * keep, val itself, checked admissible (seed 9.2: the caller's order);
+ * else an admissible order of them. out: n entries. */
+sq_status sq_domain_order(const uint32_t *val, uint32_t n, int keep, uint32_t *out, sq_error *err);
+
 /* 1 if gluing all identified sides of D gives a simple closed quad mesh
  * (sq_domain.c). */
 int sq_domain_glued_is_simple(const sq_domain *D);

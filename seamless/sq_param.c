@@ -149,7 +149,8 @@ static uint32_t corner_uv(const ctx *c, const uint32_t *v_uv, uint32_t h)
  * standing for Q corner i. */
 static uint32_t surface_side_of_q(const ctx *c, uint32_t qs) { return c->k - 1 - (qs + c->r) % c->k; }
 static uint32_t q_side_of_surface(const ctx *c, uint32_t s) { return (2 * c->k - 1 - s - c->r % c->k) % c->k; }
-static uint32_t surface_corner_of_q(const ctx *c, uint32_t i) { return (c->k - (i + c->r) % c->k) % c->k; }
+static uint32_t surface_corner(uint32_t k, uint32_t r, uint32_t i) { return (k - (i + r) % k) % k; }
+static uint32_t surface_corner_of_q(const ctx *c, uint32_t i) { return surface_corner(c->k, c->r, i); }
 
 /* Steiner vertices allowed (sq_param_options.max_steiner) */
 static uint64_t steiner_budget(const ctx *c)
@@ -184,6 +185,14 @@ static void transition(const sq_omega *O, uint32_t l, const double x[2], double 
 
 /* ---- step 1-3: cut graph, domain, Omega ------------------------------ */
 
+/* Whether the domain is built by Algorithm 1 (seed 9.2) and the cone tree
+ * may come from the surface (seed 9.4): genus >= 2 unless guidance is
+ * off; genus 1 only with SQ_GUIDE_ON (and cones: see build_domain). */
+static int uses_algorithm1(int guidance, int genus)
+{
+    return genus >= 2 ? guidance != SQ_GUIDE_OFF : genus == 1 && guidance == SQ_GUIDE_ON;
+}
+
 /* Genus 1 (seed 6.2 with seed 9.2): the cones of the meta-2-gon T, which
  * lies on Q's boundary side 5: one valence-2 cone or two valence-3 cones
  * (every admissible torus cone set but {3, 5} has one, docs/domain.md),
@@ -210,6 +219,44 @@ static uint32_t choose_t_cones(uint32_t n, const int32_t *val, const double *pos
     in_t[bi] = 1;
     if (bj != SQ_NONE) in_t[bj] = 1;
     return bj != SQ_NONE ? 2 : 1;
+}
+
+/* sq_guide_cone_order for the torus's two pieces: H's cones first, in
+ * radial order among themselves, then T's (choose_t_cones; *nt of them). */
+static sq_status order_genus1(uint32_t nc, const int32_t *val, const double *pos, uint32_t *order,
+                              uint32_t *nt, sq_error *err)
+{
+    uint8_t *in_t = malloc((size_t)nc + 1);
+    int32_t *hv = malloc(((size_t)nc + 1) * sizeof *hv);
+    double *hp = malloc((2 * (size_t)nc + 2) * sizeof *hp);
+    uint32_t *hi = malloc(((size_t)nc + 1) * sizeof *hi), *ho = malloc(((size_t)nc + 1) * sizeof *ho);
+    sq_status st = SQ_OK;
+    uint32_t nh = 0;
+    if (!in_t || !hv || !hp || !hi || !ho) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    *nt = choose_t_cones(nc, val, pos, in_t);
+    if (*nt == 0) {
+        st = sq_error_set(err, SQ_ERR_ARGUMENT,
+                          "genus 1: no cone of valence 2 and no two of valence 3 (the cone set "
+                          "admits no two-piece domain)");
+        goto done;
+    }
+    for (uint32_t i = 0; i < nc; i++) {
+        if (in_t[i]) continue;
+        hi[nh] = i, hv[nh] = val[i];
+        hp[2 * nh] = pos[2 * i], hp[2 * nh + 1] = pos[2 * i + 1];
+        nh++;
+    }
+    st = sq_guide_cone_order(nh, hv, hp, ho, err);
+    if (st) goto done;
+    for (uint32_t i = 0; i < nh; i++) order[i] = hi[ho[i]];
+    for (uint32_t i = 0, t = nh; i < nc; i++)
+        if (in_t[i]) order[t++] = i;
+done:
+    free(in_t), free(hv), free(hp), free(hi), free(ho);
+    return st;
 }
 
 /* Seed 9.2: the cut surface in the unit disk, its cones ordered by
@@ -253,31 +300,8 @@ static sq_status guided_order(ctx *c, int32_t *val, uint32_t nc, uint32_t *nt)
         goto done;
     }
     *nt = 0;
-    if (sq_mesh_genus(m) == 1) {
-        /* H's cones first (radial order among themselves), then T's */
-        uint8_t *in_t = malloc((size_t)nc + 1);
-        int32_t *hv = malloc(((size_t)nc + 1) * sizeof *hv);
-        double *hp = malloc((2 * (size_t)nc + 2) * sizeof *hp);
-        uint32_t *hi = malloc(((size_t)nc + 1) * sizeof *hi), *ho = malloc(((size_t)nc + 1) * sizeof *ho);
-        uint32_t nh = 0;
-        if (!in_t || !hv || !hp || !hi || !ho) {
-            st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-        } else if ((*nt = choose_t_cones(nc, val, pos, in_t)) == 0) {
-            st = sq_error_set(c->err, SQ_ERR_ARGUMENT,
-                              "genus 1: no cone of valence 2 and no two of valence 3 (the cone set "
-                              "admits no two-piece domain)");
-        } else {
-            for (uint32_t i = 0; i < nc; i++)
-                if (!in_t[i]) hi[nh] = i, hv[nh] = val[i], hp[2 * nh] = pos[2 * i], hp[2 * nh + 1] = pos[2 * i + 1], nh++;
-            st = sq_guide_cone_order(nh, hv, hp, ho, c->err);
-            for (uint32_t i = 0; st == SQ_OK && i < nh; i++) order[i] = hi[ho[i]];
-            for (uint32_t i = 0, t = nh; st == SQ_OK && i < nc; i++)
-                if (in_t[i]) order[t++] = i;
-        }
-        free(in_t), free(hv), free(hp), free(hi), free(ho);
-    } else {
-        st = sq_guide_cone_order(nc, val, pos, order, c->err);
-    }
+    st = sq_mesh_genus(m) == 1 ? order_genus1(nc, val, pos, order, nt, c->err)
+                               : sq_guide_cone_order(nc, val, pos, order, c->err);
     if (st) goto done;
     for (uint32_t i = 0; i < nc; i++) {
         v2[i] = val[order[i]];
@@ -295,8 +319,8 @@ done:
     return st;
 }
 
-static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt);
-static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt);
+static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt);
+static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt);
 static sq_status step_q_vertices(ctx *c, uint32_t *qv);
 
 /* Seed 9.4 (guided, genus >= 1): the cone tree chosen on the surface in
@@ -450,7 +474,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     const int mode = c->opt->guidance;
     c->guided = mode == SQ_GUIDE_ON || (mode == SQ_GUIDE_AUTO && genus >= 2);
     if (st_out) st_out->guided = c->guided;
-    if (c->guided && (genus >= 2 || (genus == 1 && nc > 0))) {
+    if (uses_algorithm1(mode, (int)genus) && (genus >= 2 || nc > 0)) {
         /* seed 9.2: cones in the order of their distance from the centre
          * of the cut surface's disk layout, each glued where the layout of
          * the growing metapolygon is closest to it (Algorithm 1); genus 1:
@@ -650,13 +674,45 @@ static double ang_diff(double a, double b)
     return d;
 }
 
+/* The domain again with another side correspondence (genus >= 2) or
+ * gluing of the two pieces (genus 1), `offset`, its metapolygon from
+ * Algorithm 1's recorded glue edges (no layouts). *out: NULL when that
+ * offset has no padding solution or needs a slide. */
+static sq_status rebuild_at(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt,
+                            uint32_t offset, sq_domain **out)
+{
+    *out = NULL;
+    c->glue.chosen[0] = SQ_NONE;
+    sq_build_options again;
+    memset(&again, 0, sizeof again);
+    again.glue_he = c->glue.chosen;
+    sq_domain_options o = *dopt;
+    o.build = &again, o.offset = offset;
+    sq_domain *D = calloc(1, sizeof *D);
+    if (!D) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    if (sq_domain_build(c->D->genus, val, nc, &o, D, NULL) == SQ_OK && !D->slid) {
+        *out = D;
+        return SQ_OK;
+    }
+    sq_domain_free(D);
+    free(D);
+    return SQ_OK;
+}
+
+static void domain_replace(ctx *c, sq_domain *D)
+{
+    sq_domain_free(c->D);
+    free(c->D);
+    c->D = D;
+}
+
 /* Seed 9.2 and seed 4 ("these can be brought into one-to-one
  * correspondence, respecting cyclic order"): of the k cyclic shifts between
  * Q's corners and the surface's, the one whose corners lie at the most
  * similar angles when Q is laid out with its cones pinned to the surface
  * cones' disk positions; Q is rebuilt with it (the shifts that admit no
  * padding are skipped). */
-static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt)
+static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt)
 {
     sq_domain *D = c->D;
     const sq_metapolygon *Q = &D->quads;
@@ -666,9 +722,8 @@ static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domai
     double *xy = malloc((2 * (size_t)Q->nv + 2) * sizeof *xy);
     double *cost = malloc((size_t)k * sizeof *cost), *psi = malloc((size_t)k * sizeof *psi);
     uint32_t *ord = malloc((size_t)k * sizeof *ord);
-    sq_domain *D2 = calloc(1, sizeof *D2);
     sq_status st = SQ_OK;
-    if (!qv || !xy || !cost || !psi || !ord || !D2) {
+    if (!qv || !xy || !cost || !psi || !ord) {
         st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -691,31 +746,18 @@ static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, sq_domai
         while (j > 0 && cost[ord[j - 1]] > cost[o]) ord[j] = ord[j - 1], j--;
         ord[j] = o;
     }
-    /* rebuilds take Algorithm 1's recorded glue edges (no layouts) */
-    c->glue.chosen[0] = SQ_NONE;
-    sq_build_options again;
-    memset(&again, 0, sizeof again);
-    again.glue_he = c->glue.chosen;
-    const sq_build_options *first = dopt->build;
-    dopt->build = &again;
-    for (uint32_t t = 0; t < k; t++) {
+    for (uint32_t t = 0; t < k && st == SQ_OK; t++) {
         uint32_t o = ord[t];
         if (o == D->offset) break; /* the current domain is the best */
-        sq_domain_init(D2);
-        dopt->offset = o;
-        if (sq_domain_build(D->genus, val, nc, dopt, D2, NULL) == SQ_OK && !D2->slid) {
-            sq_domain_free(c->D);
-            free(c->D);
-            c->D = D2;
-            D2 = NULL;
+        sq_domain *D2 = NULL;
+        st = rebuild_at(c, val, nc, dopt, o, &D2);
+        if (st == SQ_OK && D2) {
+            domain_replace(c, D2);
             st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, c->err);
             break;
         }
-        sq_domain_free(D2);
     }
-    dopt->build = first; /* `again` lives on this stack frame only */
 done:
-    if (D2) free(D2);
     free(qv);
     free(xy);
     free(cost);
@@ -744,7 +786,8 @@ static double genus1_fit(ctx *c, uint32_t nt, uint32_t *r_out, int *swap, sq_sta
     *st = qv && xy ? SQ_OK : sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     if (*st == SQ_OK) *st = step_q_vertices(c, qv);
     if (*st == SQ_OK) *st = sq_guide_metapolygon_layout(Q, c->step_xy, nh, qv, xy, c->err);
-    if (*st == SQ_OK && k == 6) {
+    assert(k == 6); /* a torus domain with cones: H's five sides and T's */
+    if (*st == SQ_OK) {
         double dt[2] = {0, 0};
         for (int w = 0; w < 2; w++)
             for (uint32_t t = 0; t < nt; t++) {
@@ -754,14 +797,11 @@ static double genus1_fit(ctx *c, uint32_t nt, uint32_t *r_out, int *swap, sq_sta
             }
         *swap = nt == 2 && dt[1] < dt[0];
         for (uint32_t r = 0; r < k; r++) {
-            int valid = 1;
-            for (uint32_t j = 0; j < k && valid; j++)
-                valid = c->pcw.partner[(j + r) % k] == (D->pattern.partner[j] + r) % k;
-            if (!valid) continue;
+            if (!sq_cut_graph_shift_pairs(&c->pcw, &D->pattern, r)) continue;
             double cost = dt[*swap];
             for (uint32_t i = 0; i < k; i++) {
                 uint32_t v = D->corner_vert[i];
-                double d = ang_diff(atan2(xy[2 * v + 1], xy[2 * v]), c->surf_corner_angle[(k - (i + r) % k) % k]);
+                double d = ang_diff(atan2(xy[2 * v + 1], xy[2 * v]), c->surf_corner_angle[surface_corner(k, r, i)]);
                 cost += d * d;
             }
             if (cost < best) best = cost, *r_out = r;
@@ -777,7 +817,7 @@ static double genus1_fit(ctx *c, uint32_t nt, uint32_t *r_out, int *swap, sq_sta
  * rebuilt from Algorithm 1's recorded glue edges, and of the cyclic side
  * correspondences with the cut surface, the pair that fits the surface
  * best (genus1_fit); T's two cones are matched to theirs by position. */
-static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, sq_domain_options *dopt)
+static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt)
 {
     const uint32_t nt = dopt->g1_split;
     uint32_t best_r = c->r, r = 0;
@@ -786,40 +826,22 @@ static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, sq_domain
     double best = genus1_fit(c, nt, &r, &swap, &st);
     if (st) return st;
     if (best < HUGE_VAL) best_r = r, best_swap = swap;
-    c->glue.chosen[0] = SQ_NONE;
-    sq_build_options again;
-    memset(&again, 0, sizeof again);
-    again.glue_he = c->glue.chosen;
-    const sq_build_options *first = dopt->build;
-    const uint32_t first_offset = dopt->offset;
-    dopt->build = &again;
     for (uint32_t p = 0; p < 6 && st == SQ_OK; p++) {
         if (p == c->D->offset) continue;
-        sq_domain *D2 = calloc(1, sizeof *D2), *keep = c->D;
-        if (!D2) {
-            st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-            break;
-        }
-        sq_domain_init(D2);
-        dopt->offset = p;
-        double fit = HUGE_VAL;
-        if (sq_domain_build(1, val, nc, dopt, D2, NULL) == SQ_OK && !D2->slid) {
-            c->D = D2;
-            fit = genus1_fit(c, nt, &r, &swap, &st);
-            c->D = keep;
-        }
+        sq_domain *D2 = NULL, *keep = c->D;
+        st = rebuild_at(c, val, nc, dopt, p, &D2);
+        if (st || !D2) continue;
+        c->D = D2;
+        double fit = genus1_fit(c, nt, &r, &swap, &st);
+        c->D = keep;
         if (st == SQ_OK && fit < best) {
             best = fit, best_r = r, best_swap = swap;
-            sq_domain_free(keep);
-            free(keep);
-            c->D = D2;
+            domain_replace(c, D2);
         } else {
             sq_domain_free(D2);
             free(D2);
         }
     }
-    dopt->build = first; /* `again` lives on this stack frame only */
-    dopt->offset = first_offset;
     if (st) return st;
     c->r = best_r;
     if (best_swap) {
@@ -2289,9 +2311,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     if (st) return st;
     /* SQ_TREE_ALTERNATE with guidance (genus >= 2, or genus 1 with
      * SQ_GUIDE_ON): each seed twice, the surface tree, then Q's tree */
-    const int g = sq_mesh_genus(m);
-    const int with_tree = o.guidance == SQ_GUIDE_ON ? g >= 1 : o.guidance == SQ_GUIDE_AUTO && g >= 2;
-    const int alternate = with_tree && o.tree == SQ_TREE_ALTERNATE;
+    const int alternate = uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
     for (uint32_t a = 0; a < n; a++) {
         o.seed = seed0 + (alternate ? a / 2 : a);
         if (alternate) o.tree = a % 2 ? SQ_TREE_DOMAIN : SQ_TREE_SURFACE;

@@ -107,31 +107,27 @@ else
   bad "--guide off: $(tail -1 "$tmp/cup_off.err")"
 fi
 
-# --- --tree domain: Q's own tree (the surface following it) passes mpz/cup
-# at seed 2, where the surface tree does not; less distortion there --------
-"$bin" param "$cup" --cones "$shared/data/mpz/cup_Th_hat" -o "$tmp/cup_dom.obj" --seed 2 --attempts 1 \
-  --tree domain --json --quiet >"$tmp/cup_dom.json" 2>"$tmp/cup_dom.err"
-if [ $? -eq 0 ] && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["guided"] and not j["surface_tree"] and j["seed_used"]==2, j' "$tmp/cup_dom.json" \
-    && python3 "$referee" "$cup" "$shared/data/mpz/cup_Th_hat" "$tmp/cup_dom.obj" --integer >"$tmp/cup_dom.ref" 2>&1; then
-  ok; echo "PASS --tree domain: mpz/cup seed 2: $(tail -1 "$tmp/cup_dom.ref")"
-else
-  bad "--tree domain: $(tail -1 "$tmp/cup_dom.err") $(cat "$tmp/cup_dom.json")"
-fi
-
 # passes_at MODEL SEED [OPTIONS...]: mpz/MODEL at that seed, one attempt,
-# gives a map the referee passes with --integer
+# gives a map the referee passes with --integer, whose --json stats j
+# satisfy $want (a Python expression; none when unset)
 passes_at() {
   local name=$1 seed=$2
   shift 2
   local mesh=$shared/data/mpz/$name.obj cones=$shared/data/mpz/${name}_Th_hat out=$tmp/at_$name
-  "$bin" param "$mesh" --cones "$cones" -o "$out.obj" --seed "$seed" --attempts 1 --quiet "$@" \
-    >/dev/null 2>"$out.err"
-  if [ $? -eq 0 ] && python3 "$referee" "$mesh" "$cones" "$out.obj" --integer >"$out.ref" 2>&1; then
+  "$bin" param "$mesh" --cones "$cones" -o "$out.obj" --seed "$seed" --attempts 1 --json --quiet "$@" \
+    >"$out.json" 2>"$out.err"
+  if [ $? -eq 0 ] \
+      && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert eval(sys.argv[2]), j' "$out.json" "${want:-True}" \
+      && python3 "$referee" "$mesh" "$cones" "$out.obj" --integer >"$out.ref" 2>&1; then
     ok; echo "PASS mpz/$name seed $seed $*: $(tail -1 "$out.ref")"
   else
-    bad "mpz/$name seed $seed $*: $(tail -1 "$out.err") $(tail -1 "$out.ref" 2>/dev/null)"
+    bad "mpz/$name seed $seed $*: $(tail -1 "$out.err") $(tail -1 "$out.ref" 2>/dev/null) $(cat "$out.json")"
   fi
 }
+
+# --- --tree domain: Q's own tree (the surface following it) passes mpz/cup
+# at seed 2, where the surface tree does not; less distortion there --------
+want='j["guided"] and not j["surface_tree"] and j["seed_used"]==2' passes_at cup 2 --tree domain
 # mpz/sculpt (genus 2, 30 cones) passes with Q's own tree at seed 20;
 # mpz/holes3 (genus 3, 24 cones; one of the seed's Table-1 models) with
 # the surface tree at seed 111
@@ -141,15 +137,7 @@ passes_at holes3 111
 # --- genus 1 with --guide on: Algorithm 1 for the meta-6-gon, the
 # meta-2-gon's cones near the circle (seed 9.2 per piece): mpz/knot1
 # passes with the surface tree, in fewer faces than unguided ------------------
-knot=$shared/data/mpz/knot1.obj
-"$bin" param "$knot" --cones "$shared/data/mpz/knot1_Th_hat" -o "$tmp/k_on.obj" --seed 1 --attempts 1 \
-  --guide on --json --quiet >"$tmp/k_on.json" 2>"$tmp/k_on.err"
-if [ $? -eq 0 ] && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["guided"] and j["surface_tree"] and j["genus"]==1 and j["faces_out"] < 8000, j' "$tmp/k_on.json" \
-    && python3 "$referee" "$knot" "$shared/data/mpz/knot1_Th_hat" "$tmp/k_on.obj" --integer >"$tmp/k_on.ref" 2>&1; then
-  ok; echo "PASS --guide on: mpz/knot1 (genus 1) seed 1: $(tail -1 "$tmp/k_on.ref")"
-else
-  bad "--guide on (genus 1): $(tail -1 "$tmp/k_on.err") $(cat "$tmp/k_on.json")"
-fi
+want='j["guided"] and j["surface_tree"] and j["genus"]==1 and j["faces_out"] < 8000' passes_at knot1 1 --guide on
 # a torus without cones has no pieces: --guide on still maps it
 torus=$shared/data/gpjs/torus.obj
 python3 -c 'import math,sys; print("\n".join(["%.17g" % (2 * math.pi)] * int(sys.argv[1])))' \
@@ -226,6 +214,7 @@ done
 # --- errors: exit code, message, nothing written ------------------------------
 nothing_written() { [ -z "$(ls -A "$tmp/e" 2>/dev/null)" ]; }
 mkdir -p "$tmp/e"
+knot=$shared/data/mpz/knot1.obj
 knot_cones=$shared/data/mpz/knot1_Th_hat
 expect() { # expect NAME CODE SUBSTRING -- ARGS...
   local name=$1 code=$2 sub=$3
