@@ -71,6 +71,10 @@ static void help(FILE *f)
             "                      too many Steiner vertices), try the next cut-graph\n"
             "                      seed (attempt a uses seed N + a; N + a/2 when the\n"
             "                      trees alternate, see --tree)\n"
+            "  --threads N         attempts run at once (default: 2, or 1 on a single\n"
+            "                      core): the result is the same as with 1, the lowest\n"
+            "                      attempt that passes, found sooner when attempts fail;\n"
+            "                      memory grows with the attempts running\n"
             "  --guide MODE        geometric guidance (seed 9.2): auto (default) is on for\n"
             "                      genus >= 2, off below. on: the cut surface is laid out\n"
             "                      in the unit disk; the cones are taken from its centre\n"
@@ -372,6 +376,8 @@ int sq_cmd_param(int argc, char **argv)
     int json = 0, quiet = 0;
     const char *diagnose = NULL;
     unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS, refine = SQ_PARAM_REFINE, max_steiner = 0;
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    unsigned long long threads = ncpu > 1 ? 2 : 1;
     int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -397,6 +403,8 @@ int sq_cmd_param(int argc, char **argv)
             if (!u64_option(a, argv[++i], 0, UINT64_MAX, &seed)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--attempts") && has) {
             if (!u64_option(a, argv[++i], 1, 1000, &attempts)) return SQ_EXIT_USAGE;
+        } else if (!strcmp(a, "--threads") && has) {
+            if (!u64_option(a, argv[++i], 1, 64, &threads)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--refine") && has) {
             if (!u64_option(a, argv[++i], 0, 64, &refine)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--max-steiner") && has) {
@@ -449,6 +457,7 @@ int sq_cmd_param(int argc, char **argv)
     sq_param_options_default(&opt);
     opt.seed = seed;
     opt.attempts = (uint32_t)attempts;
+    opt.threads = (uint32_t)threads;
     opt.refine = (uint32_t)refine;
     opt.max_steiner = max_steiner;
     opt.guidance = guidance;

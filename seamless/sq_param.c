@@ -2,9 +2,11 @@
  * seed 7 "Compatible Cutting", seed 8 "Bijective Parametrization",
  * seamless-notes 5; docs/param.md). */
 #include "sq_param.h"
+#include "sq_param_internal.h"
 
 #include <assert.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -94,6 +96,7 @@ typedef struct ctx {
     uint32_t *q_target;  /* Q->nv: the surface cone matched to a cone of Q */
                          /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
                          /* when unguided                                  */
+    const _Atomic int *cancel;  /* another attempt passed: stop (may be NULL)  */
     uint32_t *face_limit;       /* O->cut.nf or NULL: cell size limits per quad */
                                 /* of Omega (step 7c, refinement rounds)       */
 } ctx;
@@ -158,7 +161,13 @@ static uint64_t steiner_budget(const ctx *c)
     return c->opt->max_steiner ? c->opt->max_steiner : 9u * (uint64_t)c->S.nv_input + 100000u;
 }
 
-static int over_budget(const ctx *c) { return (uint64_t)(c->S.nv - c->S.nv_input) > steiner_budget(c); }
+static int cancelled(const ctx *c) { return c->cancel && atomic_load(c->cancel); }
+
+/* Also true once the attempt is cancelled: every long loop checks it. */
+static int over_budget(const ctx *c)
+{
+    return (uint64_t)(c->S.nv - c->S.nv_input) > steiner_budget(c) || cancelled(c);
+}
 
 static sq_status budget_error(ctx *c, const char *stage)
 {
@@ -188,7 +197,7 @@ static void transition(const sq_omega *O, uint32_t l, const double x[2], double 
 /* Whether the domain is built by Algorithm 1 (seed 9.2) and the cone tree
  * may come from the surface (seed 9.4): genus >= 2 unless guidance is
  * off; genus 1 only with SQ_GUIDE_ON (and cones: see build_domain). */
-static int uses_algorithm1(int guidance, int genus)
+int sq_param_uses_algorithm1(int guidance, int genus)
 {
     return genus >= 2 ? guidance != SQ_GUIDE_OFF : genus == 1 && guidance == SQ_GUIDE_ON;
 }
@@ -474,7 +483,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     const int mode = c->opt->guidance;
     c->guided = mode == SQ_GUIDE_ON || (mode == SQ_GUIDE_AUTO && genus >= 2);
     if (st_out) st_out->guided = c->guided;
-    if (uses_algorithm1(mode, (int)genus) && (genus >= 2 || nc > 0)) {
+    if (sq_param_uses_algorithm1(mode, (int)genus) && (genus >= 2 || nc > 0)) {
         /* seed 9.2: cones in the order of their distance from the centre
          * of the cut surface's disk layout, each glued where the layout of
          * the growing metapolygon is closest to it (Algorithm 1); genus 1:
@@ -2154,8 +2163,9 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
 /* One attempt with the options as given (opt and stats are never NULL here;
  * the cone set has passed its checks), with up to opt->refine rounds of
  * step 7c. */
-static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                            sq_param *out, sq_param_stats *stats, sq_error *err)
+sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                              const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
+                              sq_error *err)
 {
     double t_start = now_s();
     memset(stats, 0, sizeof *stats);
@@ -2163,7 +2173,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     sq_status st = SQ_OK;
     ctx c;
     memset(&c, 0, sizeof c);
-    c.m = m, c.opt = opt, c.err = err;
+    c.m = m, c.opt = opt, c.err = err, c.cancel = cancel;
     c.keep_flips = opt->allow_flips;
     c.root_step = c.root_surface = SQ_NONE;
     c.S_valence = valence;
@@ -2214,6 +2224,10 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     double t2 = now_s(), t_round = t2, t3 = t2; /* t_round: the last round's start */
     if (opt->refine) st = before_cells_save(&c, &saved);
     for (uint32_t round = 0; st == SQ_OK; round++) {
+        if (cancelled(&c)) {
+            st = sq_error_set(err, SQ_ERR_SOLVER, "cancelled: an earlier attempt passed");
+            break;
+        }
         if (round) {
             progress(&c, "halving the cells with bad triangles", 0.55);
             st = before_cells_restore(&c, &saved);
@@ -2292,36 +2306,3 @@ done:
     return st;
 }
 
-sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                         sq_param *out, sq_param_stats *stats, sq_error *err)
-{
-    double t_start = now_s();
-    sq_param_options o;
-    if (opt) o = *opt;
-    else sq_param_options_default(&o);
-    const uint32_t n = o.attempts ? o.attempts : 1;
-    const uint64_t seed0 = o.seed;
-    sq_param_stats local;
-    if (!stats) stats = &local;
-    memset(stats, 0, sizeof *stats);
-    stats->verts_in = m->nv, stats->faces_in = m->nf;
-    /* the input's cone set, once for every attempt */
-    sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
-    if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
-    if (st) return st;
-    /* SQ_TREE_ALTERNATE with guidance (genus >= 2, or genus 1 with
-     * SQ_GUIDE_ON): each seed twice, the surface tree, then Q's tree */
-    const int alternate = uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
-    for (uint32_t a = 0; a < n; a++) {
-        o.seed = seed0 + (alternate ? a / 2 : a);
-        if (alternate) o.tree = a % 2 ? SQ_TREE_DOMAIN : SQ_TREE_SURFACE;
-        if (a > 0 && o.progress)
-            o.progress(o.progress_ctx, alternate && a % 2 ? "retry with the domain's cone tree" : "retry with another cut graph", 0.0);
-        st = build_once(m, valence, &o, out, stats, err);
-        stats->attempts = a + 1;
-        stats->seed_used = o.seed;
-        if (st != SQ_ERR_SOLVER) break;
-    }
-    stats->t_total = now_s() - t_start;
-    return st;
-}

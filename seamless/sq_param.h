@@ -73,6 +73,11 @@ typedef struct sq_param_options {
     /* Steiner vertices allowed before an attempt gives up (SQ_ERR_SOLVER);
      * 0: 9 per input vertex + 100000. */
     uint64_t max_steiner;
+    /* Attempts run at once, each in its own thread (default 1; 0 counts
+     * as 1). The result is the same as with 1: the lowest attempt that
+     * passes (later ones are cancelled, earlier ones awaited); memory grows
+     * with the attempts running. */
+    uint32_t threads;
 } sq_param_options;
 
 #define SQ_PARAM_REFINE 8

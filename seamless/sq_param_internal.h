@@ -12,4 +12,16 @@
  * otherwise). */
 sq_status sq_param_mesh(const sq_param *P, const char *who, sq_mesh *m, sq_error *err);
 
+/* Whether Algorithm 1 builds Q and the surface tree applies (seed 9.2):
+ * guidance on, or auto for genus >= 2. */
+int sq_param_uses_algorithm1(int guidance, int genus);
+
+/* One attempt of sq_param_build at opt->seed (sq_param.c): cut graph,
+ * domain, cuts, maps and their refinement rounds. cancel (may be NULL):
+ * when another thread sets it, the attempt stops at its next Steiner
+ * budget check or round with SQ_ERR_SOLVER (its result is then unused). */
+sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                              const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
+                              sq_error *err);
+
 #endif

@@ -164,6 +164,53 @@ static void test_cup_guided(void **state)
     unload(&M);
 }
 
+/* Attempts in threads (sq_param_options.threads) give the result of one
+ * after another: mpz/cup from seed 2 without rounds passes at attempt 2
+ * (seed 3) with 1, 2 and 3 threads, the same map to the bit; with a
+ * Steiner budget of 1 every attempt fails, and the last one's error and
+ * seed are reported. */
+static void test_threads(void **state)
+{
+    (void)state;
+    model M;
+    load(&M, "mpz/cup");
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.seed = 2, opt.attempts = 3, opt.refine = 0;
+    sq_param P1, P;
+    sq_param_init(&P1);
+    sq_param_stats s1, st;
+    sq_error err = {0};
+    opt.threads = 1;
+    if (sq_param_build(&M.m, M.val, &opt, &P1, &s1, &err)) fail_msg("cup, 1 thread: %s", err.msg);
+    assert_true(s1.attempts == 2 && s1.seed_used == 3);
+    for (uint32_t t = 2; t <= 3; t++) {
+        opt.threads = t;
+        sq_param_init(&P);
+        if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("cup, %u threads: %s", t, err.msg);
+        assert_true(st.attempts == s1.attempts && st.seed_used == s1.seed_used && st.faces_out == s1.faces_out);
+        assert_true(P.nv == P1.nv && P.nf == P1.nf && P.nuv == P1.nuv);
+        assert_memory_equal(P.pos, P1.pos, 3 * (size_t)P.nv * sizeof *P.pos);
+        assert_memory_equal(P.tri, P1.tri, 3 * (size_t)P.nf * sizeof *P.tri);
+        assert_memory_equal(P.uv, P1.uv, 2 * (size_t)P.nuv * sizeof *P.uv);
+        assert_memory_equal(P.tri_uv, P1.tri_uv, 3 * (size_t)P.nf * sizeof *P.tri_uv);
+        sq_param_free(&P);
+    }
+    sq_param_free(&P1);
+    /* every attempt over the budget */
+    opt.max_steiner = 1;
+    char msg1[sizeof err.msg];
+    opt.threads = 1;
+    assert_int_equal(sq_param_build(&M.m, M.val, &opt, &P, &s1, &err), SQ_ERR_SOLVER);
+    memcpy(msg1, err.msg, sizeof msg1);
+    opt.threads = 2;
+    assert_int_equal(sq_param_build(&M.m, M.val, &opt, &P, &st, &err), SQ_ERR_SOLVER);
+    assert_true(st.attempts == 3 && s1.attempts == 3 && st.seed_used == 4 && s1.seed_used == 4);
+    assert_string_equal(err.msg, msg1);
+    assert_null(P.pos);
+    unload(&M);
+}
+
 static const char *models[] = {"mpz/block",   "mpz/cup",        "mpz/elk",      "mpz/fandisk",
                                "mpz/femur",   "mpz/fertility_tri", "mpz/genus3", "mpz/helmet",
                                "mpz/holes3",  "mpz/homer",      "mpz/knot1",    "mpz/rocker_arm",
@@ -341,6 +388,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_eight_passes),
         cmocka_unit_test(test_cup_guided),
+        cmocka_unit_test(test_threads),
         cmocka_unit_test(test_all_models_compatible),
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_bad_cells),

@@ -1,0 +1,188 @@
+/* seamquad: the attempts of sq_param_build, one after another or several
+ * at once.
+ *
+ * Attempt a uses the cut-graph seed seed + a (or seed + a / 2, alternating
+ * the cone trees); only SQ_ERR_SOLVER (a map that fails its exact checks,
+ * the Steiner budget) is retried. The result is the lowest attempt that
+ * passes, or that fails otherwise; with every attempt failing, the last.
+ * With sq_param_options.threads > 1 the attempts are taken in order by
+ * that many threads, each building its own map (the library has no global
+ * state; the sparse solvers keep theirs per call); once attempt a ends
+ * without SQ_ERR_SOLVER, the attempts after it are cancelled and the ones
+ * before it are awaited, so the result is the same as one after another,
+ * only sooner. Progress is reported for the lowest attempt still running. */
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sq_cones.h"
+#include "sq_param.h"
+#include "sq_param_internal.h"
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The options of attempt a. */
+static sq_param_options attempt_options(const sq_param_options *o, uint32_t a, int alternate)
+{
+    sq_param_options x = *o;
+    x.seed = o->seed + (alternate ? a / 2 : a);
+    if (alternate) x.tree = a % 2 ? SQ_TREE_DOMAIN : SQ_TREE_SURFACE;
+    return x;
+}
+
+static const char *retry_message(int alternate, uint32_t a)
+{
+    return alternate && a % 2 ? "retry with the domain's cone tree" : "retry with another cut graph";
+}
+
+typedef struct job {
+    sq_param_options o;
+    sq_param out;
+    sq_param_stats stats;
+    sq_error err;
+    sq_status st;
+    _Atomic int cancel;
+    int done;
+    struct pool *pool;
+    uint32_t index;
+} job;
+
+typedef struct pool {
+    const sq_mesh *m;
+    const int32_t *valence;
+    const sq_param_options *o; /* the caller's: progress goes there */
+    int alternate;
+    uint32_t n;
+    job *jobs;
+    pthread_mutex_t mu;
+    uint32_t next;   /* the next attempt to start                         */
+    uint32_t ended;  /* the lowest attempt that ended without SQ_ERR_SOLVER */
+    uint32_t lowest; /* the lowest attempt not done: it reports progress  */
+} pool;
+
+static void job_progress(void *ctx, const char *stage, double f)
+{
+    job *J = ctx;
+    pool *P = J->pool;
+    pthread_mutex_lock(&P->mu);
+    if (J->index == P->lowest && P->o->progress) P->o->progress(P->o->progress_ctx, stage, f);
+    pthread_mutex_unlock(&P->mu);
+}
+
+static void *worker(void *arg)
+{
+    pool *P = arg;
+    for (;;) {
+        pthread_mutex_lock(&P->mu);
+        uint32_t a = P->next;
+        if (a >= P->n || a > P->ended) {
+            pthread_mutex_unlock(&P->mu);
+            return NULL;
+        }
+        P->next++;
+        pthread_mutex_unlock(&P->mu);
+        job *J = &P->jobs[a];
+        J->st = sq_param_build_once(P->m, P->valence, &J->o, &J->cancel, &J->out, &J->stats, &J->err);
+        pthread_mutex_lock(&P->mu);
+        J->done = 1;
+        if (J->st != SQ_ERR_SOLVER && a < P->ended) {
+            P->ended = a;
+            for (uint32_t b = a + 1; b < P->n; b++) atomic_store(&P->jobs[b].cancel, 1);
+        }
+        if (a == P->lowest) {
+            while (P->lowest < P->n && P->jobs[P->lowest].done) P->lowest++;
+            if (P->lowest < P->n && P->lowest <= P->ended && P->o->progress)
+                P->o->progress(P->o->progress_ctx, retry_message(P->alternate, P->lowest), 0.0);
+        }
+        pthread_mutex_unlock(&P->mu);
+    }
+}
+
+static sq_status build_threaded(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
+                                uint32_t n, int alternate, uint32_t threads, sq_param *out,
+                                sq_param_stats *stats, sq_error *err)
+{
+    pool P;
+    memset(&P, 0, sizeof P);
+    P.m = m, P.valence = valence, P.o = o, P.alternate = alternate, P.n = n;
+    P.ended = n, P.lowest = 0;
+    P.jobs = calloc(n, sizeof *P.jobs);
+    pthread_t *th = calloc(threads, sizeof *th);
+    if (!P.jobs || !th || pthread_mutex_init(&P.mu, NULL) != 0) {
+        free(P.jobs);
+        free(th);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (attempt threads)");
+    }
+    for (uint32_t a = 0; a < n; a++) {
+        job *J = &P.jobs[a];
+        J->o = attempt_options(o, a, alternate);
+        J->o.progress = job_progress, J->o.progress_ctx = J;
+        J->pool = &P, J->index = a, J->st = SQ_ERR_SOLVER;
+        atomic_init(&J->cancel, 0);
+        sq_param_init(&J->out);
+    }
+    /* threads - 1 helpers; this thread works too */
+    uint32_t started = 0;
+    for (uint32_t t = 1; t < threads; t++)
+        if (pthread_create(&th[started], NULL, worker, &P) == 0) started++;
+    worker(&P);
+    for (uint32_t t = 0; t < started; t++) pthread_join(th[t], NULL);
+    pthread_mutex_destroy(&P.mu);
+    free(th);
+    uint32_t pick = P.ended < n ? P.ended : n - 1;
+    job *J = &P.jobs[pick];
+    *out = J->out;
+    memset(&J->out, 0, sizeof J->out);
+    *stats = J->stats;
+    stats->attempts = pick + 1;
+    stats->seed_used = J->o.seed;
+    if (err) *err = J->err;
+    sq_status st = J->st;
+    for (uint32_t a = 0; a < n; a++) sq_param_free(&P.jobs[a].out);
+    free(P.jobs);
+    return st;
+}
+
+sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                         sq_param *out, sq_param_stats *stats, sq_error *err)
+{
+    double t_start = now_seconds();
+    sq_param_options o;
+    if (opt) o = *opt;
+    else sq_param_options_default(&o);
+    const uint32_t n = o.attempts ? o.attempts : 1;
+    sq_param_stats local;
+    if (!stats) stats = &local;
+    memset(stats, 0, sizeof *stats);
+    stats->verts_in = m->nv, stats->faces_in = m->nf;
+    /* the input's cone set, once for every attempt */
+    sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
+    if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
+    if (st) return st;
+    /* SQ_TREE_ALTERNATE with guidance (genus >= 2, or genus 1 with
+     * SQ_GUIDE_ON): each seed twice, the surface tree, then Q's tree */
+    const int alternate = sq_param_uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
+    uint32_t threads = o.threads ? o.threads : 1;
+    if (threads > n) threads = n;
+    if (threads > 1) {
+        st = build_threaded(m, valence, &o, n, alternate, threads, out, stats, err);
+    } else {
+        for (uint32_t a = 0; a < n; a++) {
+            sq_param_options x = attempt_options(&o, a, alternate);
+            if (a > 0 && o.progress) o.progress(o.progress_ctx, retry_message(alternate, a), 0.0);
+            st = sq_param_build_once(m, valence, &x, NULL, out, stats, err);
+            stats->attempts = a + 1;
+            stats->seed_used = x.seed;
+            if (st != SQ_ERR_SOLVER) break;
+        }
+    }
+    stats->t_total = now_seconds() - t_start;
+    return st;
+}
