@@ -97,9 +97,12 @@ static void *worker(void *arg)
             for (uint32_t b = a + 1; b < P->n; b++) atomic_store(&P->jobs[b].cancel, 1);
         }
         if (a == P->lowest) {
+            /* as one after another: a retry message for every attempt
+             * after the lowest done, up to the one that ended the run */
+            uint32_t from = P->lowest + 1;
             while (P->lowest < P->n && P->jobs[P->lowest].done) P->lowest++;
-            if (P->lowest < P->n && P->lowest <= P->ended && P->o->progress)
-                P->o->progress(P->o->progress_ctx, retry_message(P->alternate, P->lowest), 0.0);
+            for (uint32_t k = from; k <= P->lowest && k < P->n && k <= P->ended && P->o->progress; k++)
+                P->o->progress(P->o->progress_ctx, retry_message(P->alternate, k), 0.0);
         }
         pthread_mutex_unlock(&P->mu);
     }
