@@ -97,6 +97,8 @@ typedef struct ctx {
                          /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
                          /* when unguided                                  */
     const _Atomic int *cancel;  /* another attempt passed: stop (may be NULL)  */
+    uint32_t *h_uv;             /* S.nh: corner_uv of every halfedge once the */
+                                /* interior map of a round is done; else NULL */
     uint32_t *face_limit;       /* O->cut.nf or NULL: cell size limits per quad */
                                 /* of Omega (step 7c, refinement rounds)       */
 } ctx;
@@ -139,11 +141,32 @@ static uint32_t uv_add(ctx *c, double u, double v)
  * its sector's on the cut; SQ_NONE where there is none yet. */
 static uint32_t corner_uv(const ctx *c, const uint32_t *v_uv, uint32_t h)
 {
+    if (c->h_uv) return c->h_uv[h];
     const sq_tsurf *S = &c->S;
     uint32_t v = S->vert[h];
     if (!S->v_ncut[v]) return v_uv ? v_uv[v] : SQ_NONE;
     uint32_t sec = sq_tsurf_sector_of(S, h);
     return sec == SQ_NONE ? SQ_NONE : c->sec_uv[sec];
+}
+
+/* corner_uv of every halfedge at once (c->h_uv), for the checks after the
+ * interior map: each sector is walked once, counterclockwise from the cut
+ * halfedge that bounds it, instead of once per corner. 0: no memory. */
+static int corner_table(ctx *c, const uint32_t *v_uv)
+{
+    const sq_tsurf *S = &c->S;
+    uint32_t *t = malloc(((size_t)S->nh + 1) * sizeof *t);
+    if (!t) return 0;
+    for (uint32_t h = 0; h < S->nh; h++) {
+        if (!S->v_ncut[S->vert[h]]) t[h] = v_uv[S->vert[h]];
+        if (!S->kind[h] || !S->v_ncut[S->vert[h]]) continue;
+        uint32_t u = c->sec_uv[h];
+        t[h] = u;
+        for (uint32_t g = sq_ts_ccw(S, h); !S->kind[g]; g = sq_ts_ccw(S, g)) t[g] = u;
+    }
+    free(c->h_uv);
+    c->h_uv = t;
+    return 1;
 }
 
 /* Q's sides and corners against the cut graph's (sq_cut_graph_domain_offset:
@@ -2246,12 +2269,15 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
         t3 = now_s();
         progress(&c, "tutte", 0.7);
         free(v_uv);
+        free(c.h_uv);
+        c.h_uv = NULL;
         v_uv = malloc((size_t)c.S.nv * sizeof *v_uv);
         if (!v_uv) {
             st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
             break;
         }
         st = tutte(&c, v_uv);
+        if (st == SQ_OK && !corner_table(&c, v_uv)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         if (st) break;
         /* step 7b; step 8 checks every triangle */
         if (repair_flips(&c, v_uv, 50) == 0 || round >= opt->refine) break;
@@ -2298,6 +2324,7 @@ done:
     free(c.step_xy);
     free(c.surf_corner_angle);
     free(c.sec_uv);
+    free(c.h_uv);
     free(c.uv);
     free(hmap);
     free(v_uv);
