@@ -1,6 +1,5 @@
 #include "cli_common.h"
 
-#include <time.h>
 
 #include "sq_cones.h"
 
@@ -29,13 +28,6 @@ void sq_json_error(sq_status code, const char *stage, const char *message)
     printf(", \"message\": ");
     sq_json_string(stdout, message);
     printf("}");
-}
-
-double sq_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 int sq_exit_code(sq_status st)

@@ -5,6 +5,7 @@
 
 #include <stdio.h>
 
+#include "sq_clock.h"
 #include "sq_error.h"
 #include "sq_mesh.h"
 
@@ -38,8 +39,6 @@ void sq_json_string(FILE *f, const char *s);
  * cones are realizable on its genus; a failure message starts with the
  * cone file's path (the library's messages know vertices, not files). */
 sq_status sq_cli_read_cones(const char *path, const sq_mesh *mesh, int32_t *val, sq_error *err);
-
-double sq_now(void);
 
 /* Exit code for a library status. */
 int sq_exit_code(sq_status st);

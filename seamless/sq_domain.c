@@ -1,11 +1,11 @@
 /* seamquad: the combinatorial seamless domain (see sq_domain.h). */
+#include "sq_clock.h"
 #include "sq_domain.h"
 
 #include <assert.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "sq_cones.h"
 #include "sq_domain_internal.h"
@@ -39,12 +39,6 @@ void sq_domain_free(sq_domain *D)
     sq_domain_init(D);
 }
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* The boundary vertex `steps` edges after boundary vertex v, following the
  * boundary loop (clockwise, sq_metapolygon convention). */
@@ -210,7 +204,7 @@ sq_status sq_domain_order(const uint32_t *val, uint32_t n, int keep, uint32_t *o
 sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncones,
                           const sq_domain_options *opt, sq_domain *D, sq_error *err)
 {
-    double t0 = now_seconds();
+    double t0 = sq_now();
     sq_domain_init(D);
     D->genus = genus;
     sq_status st = sq_valences_check_realizable(ncones, valences, genus, err);
@@ -233,7 +227,7 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
                         : sq_domain_build_genus1(irr, n, opt, D, err);
         free(irr);
         if (st) goto fail;
-        D->seconds = now_seconds() - t0;
+        D->seconds = sq_now() - t0;
         return SQ_OK;
     }
     /* seed 5.2: positive excess first */
@@ -319,7 +313,7 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
         D->slide_shift = info.shift;
         D->slide_start = info.seam_start;
         D->slide_end = info.seam_end;
-        D->seconds = now_seconds() - t0;
+        D->seconds = sq_now() - t0;
         return SQ_OK;
     }
     sq_metapolygon unpadded;
@@ -389,7 +383,7 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
                           nchoice, tried);
     free(corner_v), free(len);
     if (st) goto fail;
-    D->seconds = now_seconds() - t0;
+    D->seconds = sq_now() - t0;
     return SQ_OK;
 fail:
     sq_domain_free(D);

@@ -1,6 +1,7 @@
 /* seamquad: seamless parametrization of a closed surface (sq_param.h;
  * seed 7 "Compatible Cutting", seed 8 "Bijective Parametrization",
  * seamless-notes 5; docs/param.md). */
+#include "sq_clock.h"
 #include "sq_param.h"
 #include "sq_param_internal.h"
 
@@ -9,7 +10,6 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "sq_cones.h"
 #include "sq_cut_graph.h"
@@ -49,12 +49,6 @@ void sq_param_free(sq_param *P)
     sq_param_init(P);
 }
 
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* ---- working state ---------------------------------------------------- */
 
@@ -473,7 +467,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     for (uint32_t v = 0; v < m->nv; v++)
         if (valence[v] != 4) cone[v] = 1, val[nc++] = valence[v];
     if (st_out) st_out->genus = genus, st_out->ncones = nc;
-    double t0 = now_s();
+    double t0 = sq_now();
     progress(c, "cut graph", 0.0);
     sq_cut_options copt;
     sq_cut_options_default(&copt);
@@ -495,7 +489,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     if (st) goto done;
     st = sq_pattern_reversed(&c->G.pattern, &c->pcw, err);
     if (st) goto done;
-    double t1 = now_s();
+    double t1 = sq_now();
     progress(c, "domain", 0.1);
     sq_domain_options dopt;
     memset(&dopt, 0, sizeof dopt);
@@ -530,7 +524,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     if (st == SQ_OK && c->step_vertex && genus == 1) st = align_genus1(c, val, nc, &dopt);
     else if (st == SQ_OK && c->step_vertex) st = align_corners(c, val, nc, &dopt);
     if (st) goto done;
-    double t2 = now_s();
+    double t2 = sq_now();
     progress(c, "omega", 0.2);
     st = SQ_ERR_SOLVER;
     if (c->step_vertex && c->opt->tree != SQ_TREE_DOMAIN) st = guided_tree(c);
@@ -539,7 +533,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     if (st == SQ_OK) st = sq_omega_build(c->D, c->T, c->O, err);
     if (st == SQ_OK && c->s_tree_next) st = guided_root(c);
     if (st) goto done;
-    double t3 = now_s();
+    double t3 = sq_now();
     if (st_out) {
         st_out->genus = genus;
         st_out->ncones = nc;
@@ -2190,7 +2184,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
                               const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
                               sq_error *err)
 {
-    double t_start = now_s();
+    double t_start = sq_now();
     memset(stats, 0, sizeof *stats);
     stats->verts_in = m->nv, stats->faces_in = m->nf;
     sq_status st = SQ_OK;
@@ -2220,7 +2214,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     sq_omega_init(c.O);
     st = build_domain(&c, valence, stats);
     if (st) goto done;
-    double t0 = now_s();
+    double t0 = sq_now();
     progress(&c, "cone tree", 0.3);
     st = sq_tsurf_from_mesh(m, valence, &c.S, hmap, err);
     if (st) goto done;
@@ -2234,7 +2228,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     if (st == SQ_OK && c.guided) st = guide(&c);
     if (st == SQ_OK) st = replicate_tree(&c, root_he);
     if (st) goto done;
-    double t1 = now_s();
+    double t1 = sq_now();
     progress(&c, "boundary map", 0.45);
     c.o2m = malloc((size_t)c.O->cut.nh * sizeof *c.o2m);
     if (!c.o2m || sec_reserve(&c)) {
@@ -2244,7 +2238,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     for (uint32_t h = 0; h < c.O->cut.nh; h++) c.o2m[h] = SQ_NONE;
     st = boundary_map(&c);
     if (st) goto done;
-    double t2 = now_s(), t_round = t2, t3 = t2; /* t_round: the last round's start */
+    double t2 = sq_now(), t_round = t2, t3 = t2; /* t_round: the last round's start */
     if (opt->refine) st = before_cells_save(&c, &saved);
     for (uint32_t round = 0; st == SQ_OK; round++) {
         if (cancelled(&c)) {
@@ -2253,9 +2247,11 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
         }
         if (round) {
             progress(&c, "halving the cells with bad triangles", 0.55);
+            free(c.h_uv); /* it describes the surface being dropped */
+            c.h_uv = NULL;
             st = before_cells_restore(&c, &saved);
             if (st) break;
-            t_round = now_s();
+            t_round = sq_now();
         }
         progress(&c, "cells", 0.55);
         st = sq_omega_cells_build(c.O, 0, c.face_limit, &c.C, err);
@@ -2266,11 +2262,9 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
             st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
             break;
         }
-        t3 = now_s();
+        t3 = sq_now();
         progress(&c, "tutte", 0.7);
         free(v_uv);
-        free(c.h_uv);
-        c.h_uv = NULL;
         v_uv = malloc((size_t)c.S.nv * sizeof *v_uv);
         if (!v_uv) {
             st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
@@ -2288,13 +2282,13 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
         stats->cells_refined += halved;
     }
     if (st) goto done;
-    double t4 = now_s();
+    double t4 = sq_now();
     progress(&c, "check", 0.9);
     st = assemble(&c, v_uv, valence, out, stats);
     if (st) goto done;
     out->domain = c.D, out->tree = c.T, out->omega = c.O;
     c.D = NULL, c.T = NULL, c.O = NULL;
-    double t5 = now_s();
+    double t5 = sq_now();
     stats->t_tree = t1 - t0;
     stats->t_boundary = t2 - t1;
     stats->t_cells = t3 - t_round;

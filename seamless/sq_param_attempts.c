@@ -5,8 +5,9 @@
  * the cone trees); only SQ_ERR_SOLVER (a map that fails its exact checks,
  * the Steiner budget) is retried. The result is the lowest attempt that
  * passes, or that fails otherwise; with every attempt failing, the last.
- * With sq_param_options.threads > 1 the attempts are taken in order by
- * that many threads, each building its own map (the library has no global
+ * The attempts are taken in order by sq_param_options.threads threads
+ * (the caller's among them; with 1, one after another in the caller's),
+ * each building its own map (the library has no global
  * state; the sparse solvers keep theirs per call); once attempt a ends
  * without SQ_ERR_SOLVER, the attempts after it are cancelled and the ones
  * before it are awaited, so the result is the same as one after another,
@@ -15,18 +16,12 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "sq_clock.h"
 #include "sq_cones.h"
 #include "sq_param.h"
 #include "sq_param_internal.h"
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* The options of attempt a. */
 static sq_param_options attempt_options(const sq_param_options *o, uint32_t a, int alternate)
@@ -51,7 +46,6 @@ typedef struct job {
     _Atomic int cancel;
     int done;
     struct pool *pool;
-    uint32_t index;
 } job;
 
 typedef struct pool {
@@ -72,7 +66,7 @@ static void job_progress(void *ctx, const char *stage, double f)
     job *J = ctx;
     pool *P = J->pool;
     pthread_mutex_lock(&P->mu);
-    if (J->index == P->lowest && P->o->progress) P->o->progress(P->o->progress_ctx, stage, f);
+    if ((uint32_t)(J - P->jobs) == P->lowest && P->o->progress) P->o->progress(P->o->progress_ctx, stage, f);
     pthread_mutex_unlock(&P->mu);
 }
 
@@ -108,9 +102,9 @@ static void *worker(void *arg)
     }
 }
 
-static sq_status build_threaded(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
-                                uint32_t n, int alternate, uint32_t threads, sq_param *out,
-                                sq_param_stats *stats, sq_error *err)
+static sq_status run_attempts(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
+                              uint32_t n, int alternate, uint32_t threads, sq_param *out,
+                              sq_param_stats *stats, sq_error *err)
 {
     pool P;
     memset(&P, 0, sizeof P);
@@ -127,7 +121,7 @@ static sq_status build_threaded(const sq_mesh *m, const int32_t *valence, const 
         job *J = &P.jobs[a];
         J->o = attempt_options(o, a, alternate);
         J->o.progress = job_progress, J->o.progress_ctx = J;
-        J->pool = &P, J->index = a, J->st = SQ_ERR_SOLVER;
+        J->pool = &P, J->st = SQ_ERR_SOLVER;
         atomic_init(&J->cancel, 0);
         sq_param_init(&J->out);
     }
@@ -156,7 +150,7 @@ static sq_status build_threaded(const sq_mesh *m, const int32_t *valence, const 
 sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
                          sq_param *out, sq_param_stats *stats, sq_error *err)
 {
-    double t_start = now_seconds();
+    double t_start = sq_now();
     sq_param_options o;
     if (opt) o = *opt;
     else sq_param_options_default(&o);
@@ -174,18 +168,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     const int alternate = sq_param_uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
     uint32_t threads = o.threads ? o.threads : 1;
     if (threads > n) threads = n;
-    if (threads > 1) {
-        st = build_threaded(m, valence, &o, n, alternate, threads, out, stats, err);
-    } else {
-        for (uint32_t a = 0; a < n; a++) {
-            sq_param_options x = attempt_options(&o, a, alternate);
-            if (a > 0 && o.progress) o.progress(o.progress_ctx, retry_message(alternate, a), 0.0);
-            st = sq_param_build_once(m, valence, &x, NULL, out, stats, err);
-            stats->attempts = a + 1;
-            stats->seed_used = x.seed;
-            if (st != SQ_ERR_SOLVER) break;
-        }
-    }
-    stats->t_total = now_seconds() - t_start;
+    st = run_attempts(m, valence, &o, n, alternate, threads, out, stats, err);
+    stats->t_total = sq_now() - t_start;
     return st;
 }

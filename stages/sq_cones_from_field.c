@@ -18,22 +18,16 @@
  *       other cone: both become 4 (the pair cancels: +1 - 1 = 0), leaving
  *       the torus without cones, which is realizable;
  * 5. check: sq_cones_check_gauss_bonnet and sq_cones_check_realizable. */
+#include "sq_clock.h"
 #include "sq_cross_field.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "sq_cones.h"
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int64_t defect_sum(uint32_t nv, const int32_t *valence)
 {
@@ -172,12 +166,12 @@ sq_status sq_cones_from_field(const sq_mesh *m, const sq_cones_from_field_option
     sq_cones_from_field_stats s;
     memset(&s, 0, sizeof s);
     if (!m || !valence) return sq_error_set(err, SQ_ERR_ARGUMENT, "cones from field: NULL argument");
-    double t0 = now_seconds();
+    double t0 = sq_now();
     double *u = malloc(2 * (size_t)m->nf * sizeof *u);
     if (!u) return sq_error_set(err, SQ_ERR_NOMEM, "cones from field: out of memory");
     sq_status st = sq_cross_field(m, &opt.field, u, &s.field, err);
     if (st) goto done;
-    double t1 = now_seconds();
+    double t1 = sq_now();
     s.t_field = t1 - t0;
     st = sq_cross_field_indices(m, u, valence, err);
     if (st) goto done;
@@ -187,7 +181,7 @@ sq_status sq_cones_from_field(const sq_mesh *m, const sq_cones_from_field_option
         if (valence[v] != 4) s.raw_singularities++;
         if (valence[v] <= 1) s.low_valence++;
     }
-    s.t_indices = now_seconds() - t1;
+    s.t_indices = sq_now() - t1;
     int64_t chi = sq_mesh_euler(m);
     assert(defect_sum(m->nv, valence) == 4 * chi);
     st = sq_cones_from_field_cancel(m, valence, opt.cancel_radius * mean_edge_length(m),
@@ -207,7 +201,7 @@ sq_status sq_cones_from_field(const sq_mesh *m, const sq_cones_from_field_option
         goto done;
     }
     for (uint32_t v = 0; v < m->nv; v++) s.cones += valence[v] != 4;
-    s.t_total = now_seconds() - t0;
+    s.t_total = sq_now() - t0;
 done:
     free(u);
     if (stats) *stats = s;

@@ -8,13 +8,13 @@
  * field_frames.h). E(u) = u^H A u with A Hermitian positive semidefinite;
  * its real form [[Re A, -Im A], [Im A, Re A]] (interleaved per face) is
  * real symmetric and goes to CHOLMOD. M = diag(face area / total area). */
+#include "sq_clock.h"
 #include "sq_cross_field.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "sq_cross_field_frames.h"
 #include "sq_sparse.h"
@@ -28,12 +28,6 @@
  * matters for the field. */
 #define SQ_CF_REL_SHIFT 1e-9
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 void sq_cross_field_default_options(sq_cross_field_options *opt)
 {
@@ -208,7 +202,7 @@ sq_status sq_cross_field(const sq_mesh *m, const sq_cross_field_options *opt_in,
     memset(&sys, 0, sizeof sys);
     sq_spd *fac = NULL;
     double *b = NULL, *tmp = NULL;
-    double t0 = now_seconds();
+    double t0 = sq_now();
     sq_status st = sq_cross_field_frames_build(m, &fr, err);
     if (st) return st;
     st = assemble(m, &fr, &sys, err);
@@ -224,11 +218,11 @@ sq_status sq_cross_field(const sq_mesh *m, const sq_cross_field_options *opt_in,
     for (uint32_t i = 0; i < n; i++) trace += sys.diag[i];
     double shift = SQ_CF_REL_SHIFT * trace; /* the mass matrix has trace 2 */
     if (opt.align == SQ_FIELD_CURVATURE) shift += opt.alignment;
-    double t1 = now_seconds();
+    double t1 = sq_now();
     inf.t_assemble = t1 - t0;
     st = factor(&sys, &fr, shift, &fac, err);
     if (st) goto done;
-    double t2 = now_seconds();
+    double t2 = sq_now();
     inf.t_factor = t2 - t1;
 
     if (opt.align == SQ_FIELD_CURVATURE) {
@@ -272,7 +266,7 @@ sq_status sq_cross_field(const sq_mesh *m, const sq_cross_field_options *opt_in,
         }
     }
     inf.energy = rayleigh(&sys, &fr, u, tmp);
-    inf.t_solve = now_seconds() - t2;
+    inf.t_solve = sq_now() - t2;
 
     /* unit modulus: only the direction matters downstream */
     double maxmod = 0;

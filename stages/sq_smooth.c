@@ -15,8 +15,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "sq_clock.h"
 #include "sq_ceres_adapter.h"
 #include "sq_closest_point.h"
 #include "sq_smooth_internal.h"
@@ -61,12 +61,6 @@ typedef struct smoother {
     sq_smooth_ctx ctx;
 } smoother;
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void set_frames(smoother *s)
 {
@@ -302,7 +296,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     sq_smooth_options defaults;
     if (!opt) sq_smooth_options_default(&defaults), opt = &defaults;
     memset(stats, 0, sizeof *stats);
-    double t0 = now_s();
+    double t0 = sq_now();
     if (nq == 0 || nv == 0) return sq_error_set(err, SQ_ERR_EMPTY, "smooth: the quad mesh is empty");
     for (size_t i = 0; i < 4 * (size_t)nq; i++)
         if (quads[i] >= nv)
@@ -469,7 +463,7 @@ done:
     sq_quad_quality_compute(pos, nq, quads, &stats->after);
     stats->dist_after_rel = diag > 0.0 ? max_dist_rel(&s.tree, nv, pos, diag) : 0.0;
     stats->fold_rejections = s.ctx.fold_rejections;
-    stats->seconds = now_s() - t0;
+    stats->seconds = sq_now() - t0;
     sq_cp_tree_free(&s.tree);
     free(tri_normal), free(base), free(s.vtri), free(s.frame), free(s.h), free(s.ref_normal);
     free(s.threshold), free(s.margin), free(s.x), free(s.cand), free(s.cand_tri), free(s.con_quad);
