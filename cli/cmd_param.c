@@ -107,6 +107,15 @@ static void help(FILE *f)
             "                      domain (seed 9.4); domain takes the domain's own\n"
             "                      shortest tree (passes less often, less distortion when\n"
             "                      it does); alternate tries both on each cut-graph seed\n"
+            "  --interior MODE     the interior map: cells (default) cuts Omega into\n"
+            "                      rectangles by chords replayed on the surface and maps\n"
+            "                      each cell by Tutte (with --refine rounds); overlay maps\n"
+            "                      the cut surface and Omega onto one disk (same boundary\n"
+            "                      points) and takes their common refinement: bijective\n"
+            "                      for any Omega, no chords, no rounds, but every crossing\n"
+            "                      of the two meshes in the disk is a Steiner vertex, and\n"
+            "                      where the domain's shape is far from the surface's they\n"
+            "                      exceed --max-steiner (docs/param.md, step 7')\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -228,6 +237,7 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
     printf("  \"attempts\": %u,\n  \"seed_used\": %llu,\n  \"guided\": %s,\n  \"surface_tree\": %s,\n",
            s->attempts, (unsigned long long)s->seed_used, s->guided ? "true" : "false",
            s->surface_tree ? "true" : "false");
+    printf("  \"interior\": \"%s\",\n", s->overlay ? "overlay" : "cells");
     printf("  \"refine_rounds\": %u,\n  \"cells_halved\": %u,\n", s->rounds, s->cells_refined);
     printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
            "  \"seam_edges\": %u,\n",
@@ -378,7 +388,7 @@ int sq_cmd_param(int argc, char **argv)
     unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS, refine = SQ_PARAM_REFINE, max_steiner = 0;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     unsigned long long threads = ncpu > 1 ? 2 : 1;
-    int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE;
+    int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE, interior = SQ_INTERIOR_CELLS;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -416,6 +426,14 @@ int sq_cmd_param(int argc, char **argv)
             else if (!strcmp(arg, "domain")) tree = SQ_TREE_DOMAIN;
             else {
                 fprintf(stderr, "seamquad param: --tree takes alternate, surface or domain, got '%s'\n", arg);
+                return SQ_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--interior") && has) {
+            const char *arg = argv[++i];
+            if (!strcmp(arg, "cells")) interior = SQ_INTERIOR_CELLS;
+            else if (!strcmp(arg, "overlay")) interior = SQ_INTERIOR_OVERLAY;
+            else {
+                fprintf(stderr, "seamquad param: --interior takes cells or overlay, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--guide") && has) {
@@ -462,6 +480,7 @@ int sq_cmd_param(int argc, char **argv)
     opt.max_steiner = max_steiner;
     opt.guidance = guidance;
     opt.tree = tree;
+    opt.interior = interior;
     opt.progress = on_progress;
     opt.progress_ctx = &ps;
     sq_error err;

@@ -18,6 +18,7 @@
 #include "sq_mean_value.h"
 #include "sq_omega.h"
 #include "sq_omega_cells.h"
+#include "sq_overlay.h"
 #include "sq_predicates.h"
 #include "sq_sparse.h"
 #include "sq_tsurf.h"
@@ -2177,6 +2178,527 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
     return SQ_OK;
 }
 
+/* ---- steps 6-7, overlay variant: both disks on one circle ------------- */
+
+/* Twins of a triangle list by vertex pairs (sorting): twin[3 f + i] is the
+ * halfedge running the other way, SQ_NONE when it has none. -1: out of
+ * memory, -2: an edge with more than two halfedges or two in one
+ * direction. */
+typedef struct edge_key {
+    uint64_t key;
+    uint32_t h;
+} edge_key;
+
+static int edge_key_cmp(const void *x, const void *y)
+{
+    const edge_key *a = x, *b = y;
+    return a->key < b->key ? -1 : a->key > b->key ? 1 : (a->h > b->h) - (a->h < b->h);
+}
+
+static int pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin)
+{
+    size_t nh = 3 * (size_t)nf;
+    edge_key *k = malloc(nh * sizeof *k);
+    if (!k) return -1;
+    for (size_t h = 0; h < nh; h++) {
+        uint32_t a = tri[h], b = tri[h - h % 3 + (h % 3 + 1) % 3];
+        k[h].key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+        k[h].h = (uint32_t)h;
+        twin[h] = SQ_NONE;
+    }
+    qsort(k, nh, sizeof *k, edge_key_cmp);
+    int r = 0;
+    for (size_t i = 0; i < nh && !r;) {
+        size_t j = i + 1;
+        while (j < nh && k[j].key == k[i].key) j++;
+        if (j - i > 2) r = -2;
+        if (j - i == 2) {
+            uint32_t h = k[i].h, g = k[i + 1].h;
+            if (tri[h] == tri[g]) r = -2;
+            twin[h] = g, twin[g] = h;
+        }
+        i = j;
+    }
+    free(k);
+    return r;
+}
+
+/* Mean-value Tutte map onto the disk of one mesh's interior vertices
+ * [first, first + n) given as halfedges (3 nf, triangles tri with twins):
+ * every vertex at the weighted mean of its neighbours, the others fixed at
+ * xy. p3: 3 D positions per vertex id for the weights (NULL entries not
+ * read for fixed vertices beyond their use as neighbours). */
+static sq_status disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *twin, uint32_t first,
+                            uint32_t n, const double *p3, double *xy, sq_error *err)
+{
+    if (!n) return SQ_OK;
+    size_t nh = 3 * (size_t)nf, nnz = 0;
+    uint32_t *ri = malloc((nh + n) * sizeof *ri), *cj = malloc((nh + n) * sizeof *cj);
+    double *val = malloc((nh + n) * sizeof *val), *rhs = calloc(2 * (size_t)n, sizeof *rhs),
+           *diag = calloc(n, sizeof *diag), *x = malloc(2 * (size_t)n * sizeof *x);
+    sq_lu *lu = NULL;
+    sq_status st = SQ_OK;
+    if (!ri || !cj || !val || !rhs || !diag || !x) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (size_t h = 0; h < nh; h++) {
+        uint32_t v = tri[h];
+        if (v < first || v >= first + n) continue;
+        size_t hn = h - h % 3 + (h % 3 + 1) % 3, hp = h - h % 3 + (h % 3 + 2) % 3;
+        uint32_t w = tri[hn], a = tri[hp], t = twin[h];
+        if (t == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "disk map: interior vertex %u on a boundary edge", v);
+            goto done;
+        }
+        uint32_t b = tri[t - t % 3 + (t % 3 + 2) % 3];
+        double wt = sq_mean_value_weight(p3 + 3 * (size_t)v, p3 + 3 * (size_t)w, p3 + 3 * (size_t)a,
+                                         p3 + 3 * (size_t)b);
+        diag[v - first] += wt;
+        if (w >= first && w < first + n) {
+            ri[nnz] = v - first, cj[nnz] = w - first, val[nnz] = -wt, nnz++;
+        } else {
+            rhs[v - first] += wt * xy[2 * (size_t)w];
+            rhs[n + v - first] += wt * xy[2 * (size_t)w + 1];
+        }
+    }
+    for (uint32_t i = 0; i < n; i++) ri[nnz] = i, cj[nnz] = i, val[nnz] = diag[i], nnz++;
+    st = sq_lu_factor(n, nnz, ri, cj, val, &lu, err);
+    if (st == SQ_OK) st = sq_lu_solve(lu, 2, rhs, x, err);
+    if (st) goto done;
+    for (uint32_t i = 0; i < n; i++) xy[2 * ((size_t)first + i)] = x[i], xy[2 * ((size_t)first + i) + 1] = x[n + i];
+done:
+    if (lu) sq_lu_free(lu);
+    free(ri), free(cj), free(val), free(rhs), free(diag), free(x);
+    return st;
+}
+
+typedef struct tri_list {
+    uint32_t *t;
+    uint32_t n, cap;
+} tri_list;
+
+static int tri_add(tri_list *L, uint32_t a, uint32_t b, uint32_t c)
+{
+    if (L->n == L->cap) {
+        uint32_t cap = L->cap ? 2 * L->cap : 4096;
+        uint32_t *p = realloc(L->t, 3 * (size_t)cap * sizeof *p);
+        if (!p) return -1;
+        L->t = p, L->cap = cap;
+    }
+    L->t[3 * L->n] = a, L->t[3 * L->n + 1] = b, L->t[3 * L->n + 2] = c;
+    L->n++;
+    return 0;
+}
+
+/* Triangles (c, p0, x1), (c, x1, x2), ..., (c, xn, p1). */
+static int tri_fan(tri_list *L, uint32_t c, uint32_t p0, uint32_t n, const uint32_t *x, uint32_t p1)
+{
+    uint32_t prev = p0;
+    for (uint32_t k = 0; k < n; prev = x[k++])
+        if (tri_add(L, c, prev, x[k])) return -1;
+    return tri_add(L, c, prev, p1);
+}
+
+/* The sizes of the layers above n points: each keeps every other point of
+ * the one below, its first and its last, until two are left. Returns the
+ * number of layers L (sizes[1..L]). */
+static uint32_t layer_sizes(uint32_t n, uint32_t sizes[41])
+{
+    uint32_t L = 0;
+    while (n > 2 && L < 40) {
+        n = (n - 1) / 2 + 1 + (n - 1) % 2;
+        sizes[++L] = n;
+    }
+    return L;
+}
+
+/* The triangle (c, p0, p1) of a unit square of Omega (c its centre, p0 p1
+ * a boundary edge) whose side p0 p1 holds the n surface boundary points
+ * x (in order), triangulated in graded layers instead of a fan from c:
+ * a fan's long thin triangles from c to every boundary point would each
+ * cross every layer of the surface's triangles near the boundary in the
+ * disk (nearly all the crossings of the overlay). Layer l lies at height
+ * y_l = 0.45 2^(l - L) above the edge (local coordinates: p0 = (0, 0),
+ * p1 = (1, 0), c = (1/2, 1/2)); a point at fraction t of the edge sits at
+ * x = y + t (1 - 2 y), inside the triangle. Between two layers (each a
+ * chain p0, points, p1) the strip is zipped in order of x: every triangle
+ * has a base on one layer and its apex on the other, so it is positively
+ * oriented; the two at p0 and p1 are too, because both layers keep the
+ * first and last point (same t, higher layer steeper). The top layer is
+ * fanned from c. New points get ids from *next (UVs into uv). */
+static int boundary_layers(tri_list *L, uint32_t n, uint32_t *x, double *t, uint32_t c, uint32_t p0,
+                           uint32_t p1, double *uv, uint32_t *next)
+{
+    const double *P0 = uv + 2 * (size_t)p0, *P1 = uv + 2 * (size_t)p1, *C = uv + 2 * (size_t)c;
+    double d[2] = {P1[0] - P0[0], P1[1] - P0[1]};
+    double nrm[2] = {2 * (C[0] - 0.5 * (P0[0] + P1[0])), 2 * (C[1] - 0.5 * (P0[1] + P1[1]))};
+    double dd = d[0] * d[0] + d[1] * d[1];
+    for (uint32_t k = 0; k < n; k++) {
+        const double *u = uv + 2 * (size_t)x[k];
+        t[k] = ((u[0] - P0[0]) * d[0] + (u[1] - P0[1]) * d[1]) / dd;
+    }
+    uint32_t sizes[41], nl = layer_sizes(n, sizes);
+    uint32_t *lo = x, *up = x + n + 32;
+    double *tlo = t, *tup = t + n + 32, ylo = 0;
+    for (uint32_t l = 1; l <= nl; l++) {
+        double y = 0.45 * ldexp(1.0, (int)l - (int)nl);
+        uint32_t m = 0;
+        for (uint32_t k = 0; k < n; k++) {
+            if (k % 2 && k != n - 1) continue;
+            uint32_t id = (*next)++;
+            double xx = y + tlo[k] * (1 - 2 * y);
+            uv[2 * (size_t)id] = P0[0] + xx * d[0] + y * nrm[0];
+            uv[2 * (size_t)id + 1] = P0[1] + xx * d[1] + y * nrm[1];
+            up[m] = id, tup[m] = tlo[k], m++;
+        }
+        assert(m == sizes[l]);
+        /* zip lower (n) and upper (m) chains, both from p0 to p1 */
+        if (tri_add(L, p0, lo[0], up[0])) return -1;
+        uint32_t i = 0, j = 0;
+        while (i + 1 < n || j + 1 < m) {
+            double xl = i + 1 < n ? ylo + tlo[i + 1] * (1 - 2 * ylo) : 2;
+            double xu = j + 1 < m ? y + tup[j + 1] * (1 - 2 * y) : 2;
+            if (xl < xu) {
+                if (tri_add(L, lo[i], lo[i + 1], up[j])) return -1;
+                i++;
+            } else {
+                if (tri_add(L, lo[i], up[j + 1], up[j])) return -1;
+                j++;
+            }
+        }
+        if (tri_add(L, lo[n - 1], p1, up[m - 1])) return -1;
+        /* the upper layer becomes the lower one */
+        uint32_t *ti = lo;
+        lo = up, up = ti;
+        double *td = tlo;
+        tlo = tup, tup = td;
+        n = m, ylo = y;
+    }
+    return tri_fan(L, c, p0, n, lo, p1);
+}
+
+/* The interior map by overlay (sq_overlay.h; seamless-notes 5): the cut
+ * surface A and Omega B (every unit square fanned from its centre, its
+ * boundary edges split at the surface's boundary vertices) are mapped onto
+ * the unit disk by Tutte's theorem with the same boundary points (by
+ * Omega's arc length); their common refinement is a triangulation of the
+ * surface whose every triangle lies in one triangle of B, whose affine
+ * map gives its UVs. Bijective in exact arithmetic for any Omega, convex or
+ * not, immersed or not; no chords, no cells. Fills P. */
+static sq_status overlay_map(ctx *c, const int32_t *valence, sq_param *P, sq_param_stats *stats)
+{
+    sq_tsurf *S = &c->S;
+    const sq_omega *O = c->O;
+    const sq_metapolygon *W = &O->cut;
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    if (sq_tsurf_split_blocking(S, 0) < 0 || sec_reserve(c)) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    uint32_t nb = W->nbnd;
+    uint32_t *oseq = malloc((size_t)nb * sizeof *oseq), *opos = malloc((size_t)W->nh * sizeof *opos);
+    uint32_t *bidx = malloc((size_t)S->nh * sizeof *bidx), *mseq = malloc((size_t)S->nh * sizeof *mseq);
+    uint32_t *aid = malloc((size_t)S->nv * sizeof *aid), *wid = malloc((size_t)W->nv * sizeof *wid);
+    uint32_t *mid = malloc((size_t)W->nh * sizeof *mid);
+    uint32_t *a2s = NULL, *btri = NULL, *btw = NULL, *atri = NULL, *atw = NULL, *ring = NULL, *ptw = NULL;
+    double *xy = NULL, *p3 = NULL, *buv = NULL;
+    sq_overlay X;
+    sq_overlay_init(&X);
+    if (!oseq || !opos || !bidx || !mseq || !aid || !wid || !mid) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t h = 0; h < W->nh; h++) opos[h] = SQ_NONE, mid[h] = SQ_NONE;
+    {
+        uint32_t b = W->bnd_he;
+        for (uint32_t i = 0; i < nb; i++) {
+            oseq[nb - 1 - i] = W->he_twin[b];
+            b = W->he_next[b];
+        }
+        for (uint32_t i = 0; i < nb; i++) opos[oseq[i]] = i;
+    }
+    /* the surface's boundary loop, from the copy of Omega's first corner */
+    for (uint32_t h = 0; h < S->nh; h++) bidx[h] = SQ_NONE;
+    uint32_t nbl = 0;
+    {
+        uint32_t h0 = c->o2m[oseq[0]], h = h0;
+        if (h0 == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's boundary has no surface copy");
+            goto done;
+        }
+        do {
+            if (nbl == S->nh) break;
+            bidx[h] = nbl;
+            mseq[nbl++] = h;
+            h = sq_tsurf_next_boundary(S, h);
+        } while (h != h0);
+        if (h != h0) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the surface boundary loop does not close");
+            goto done;
+        }
+    }
+    /* A: the surface; interior vertices after the boundary */
+    uint32_t na = nbl;
+    for (uint32_t v = 0; v < S->nv; v++) aid[v] = S->v_ncut[v] ? SQ_NONE : na++;
+    /* B: Omega's vertices, the squares' centres, the dividing edges' midpoints */
+    uint32_t nv = na;
+    for (uint32_t v = 0; v < W->nv; v++) wid[v] = SQ_NONE;
+    for (uint32_t i = 0; i < nb; i++) {
+        uint32_t f = oseq[i], v = W->he_vert[f], m = c->o2m[f];
+        if (m == SQ_NONE || bidx[m] == SQ_NONE || (wid[v] != SQ_NONE && wid[v] != bidx[m])) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's boundary vertex %u has no single surface copy", v);
+            goto done;
+        }
+        wid[v] = bidx[m];
+    }
+    for (uint32_t v = 0; v < W->nv; v++)
+        if (wid[v] == SQ_NONE) wid[v] = nv++;
+    uint32_t centre0 = nv;
+    nv += W->nf;
+    for (uint32_t h = 0; h < W->nh; h++) {
+        uint32_t t = W->he_twin[h];
+        if (W->he_face[h] == SQ_NONE || W->he_face[t] == SQ_NONE || t < h) continue;
+        if (wid[W->he_vert[h]] < nbl && wid[W->he_vert[t]] < nbl) mid[h] = mid[t] = nv++;
+    }
+    /* graded layers above Omega's boundary edges (boundary_layers) */
+    uint32_t layer0 = nv;
+    for (uint32_t i = 0; i < nb; i++) {
+        uint32_t f = oseq[i], sizes[41];
+        uint32_t m0 = bidx[c->o2m[f]], m1 = bidx[c->o2m[oseq[(i + 1) % nb]]];
+        uint32_t L = layer_sizes((m1 + nbl - m0 - 1) % nbl, sizes);
+        for (uint32_t l = 1; l <= L; l++) nv += sizes[l];
+    }
+    a2s = malloc((size_t)na * sizeof *a2s);
+    xy = malloc(2 * (size_t)nv * sizeof *xy);
+    p3 = calloc(3 * (size_t)nv, sizeof *p3);
+    buv = malloc(2 * (size_t)nv * sizeof *buv);
+    if (!a2s || !xy || !p3 || !buv) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t i = 0; i < nbl; i++) {
+        a2s[i] = S->vert[mseq[i]];
+        const double *u = c->uv + 2 * (size_t)c->sec_uv[mseq[i]];
+        buv[2 * i] = u[0], buv[2 * i + 1] = u[1];
+    }
+    for (uint32_t v = 0; v < S->nv; v++)
+        if (aid[v] != SQ_NONE) a2s[aid[v]] = v;
+    for (uint32_t v = 0; v < W->nv; v++)
+        if (wid[v] >= na) buv[2 * wid[v]] = (double)O->xy[2 * v], buv[2 * wid[v] + 1] = (double)O->xy[2 * v + 1];
+    for (uint32_t f = 0; f < W->nf; f++) {
+        double u = 0, w = 0;
+        uint32_t h = W->f_he[f], k = 0;
+        do {
+            u += (double)O->xy[2 * W->he_vert[h]], w += (double)O->xy[2 * W->he_vert[h] + 1], k++;
+            h = W->he_next[h];
+        } while (h != W->f_he[f]);
+        buv[2 * (centre0 + f)] = u / k, buv[2 * (centre0 + f) + 1] = w / k;
+    }
+    for (uint32_t h = 0; h < W->nh; h++)
+        if (mid[h] != SQ_NONE && h < W->he_twin[h]) {
+            uint32_t a = W->he_vert[h], b = W->he_vert[W->he_twin[h]];
+            buv[2 * mid[h]] = 0.5 * (double)(O->xy[2 * a] + O->xy[2 * b]);
+            buv[2 * mid[h] + 1] = 0.5 * (double)(O->xy[2 * a + 1] + O->xy[2 * b + 1]);
+        }
+    /* the boundary on the unit circle by Omega's arc length */
+    {
+        double L = 0;
+        for (uint32_t i = 0; i < nbl; i++) {
+            const double *u = buv + 2 * i, *w = buv + 2 * ((i + 1) % nbl);
+            L += hypot(w[0] - u[0], w[1] - u[1]);
+        }
+        double s = 0;
+        for (uint32_t i = 0; i < nbl; i++) {
+            double t = 6.283185307179586 * s / L;
+            xy[2 * i] = cos(t), xy[2 * i + 1] = sin(t);
+            const double *u = buv + 2 * i, *w = buv + 2 * ((i + 1) % nbl);
+            s += hypot(w[0] - u[0], w[1] - u[1]);
+        }
+    }
+    /* A's triangles: the faces of S */
+    atri = malloc(3 * (size_t)S->nf * sizeof *atri);
+    atw = malloc(3 * (size_t)S->nf * sizeof *atw);
+    uint32_t *hpos = malloc((size_t)S->nh * sizeof *hpos);
+    if (!atri || !atw || !hpos) {
+        free(hpos);
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t f = 0; f < S->nf; f++) {
+        uint32_t h = S->f_he[f];
+        for (uint32_t i = 0; i < 3; i++, h = S->next[h]) {
+            hpos[h] = 3 * f + i;
+            uint32_t v = S->vert[h];
+            if (aid[v] != SQ_NONE) {
+                atri[3 * f + i] = aid[v];
+            } else {
+                uint32_t sec = sq_tsurf_sector_of(S, h);
+                atri[3 * f + i] = sec == SQ_NONE ? SQ_NONE : bidx[sec];
+                if (atri[3 * f + i] == SQ_NONE) {
+                    free(hpos);
+                    st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: a sector of vertex %u is off the boundary loop", v);
+                    goto done;
+                }
+            }
+        }
+    }
+    for (uint32_t f = 0; f < S->nf; f++) {
+        uint32_t h = S->f_he[f];
+        for (uint32_t i = 0; i < 3; i++, h = S->next[h]) atw[3 * f + i] = S->kind[h] ? SQ_NONE : hpos[S->twin[h]];
+    }
+    free(hpos);
+    for (uint32_t i = 0; i < na; i++) memcpy(p3 + 3 * (size_t)i, S->pos + 3 * (size_t)a2s[i], 3 * sizeof *p3);
+    st = disk_tutte(S->nf, atri, atw, nbl, na - nbl, p3, xy, err);
+    if (st) goto done;
+    /* B's triangles: each face of Omega fanned from its centre, except
+     * above a boundary edge holding three or more surface points: there
+     * graded layers (boundary_layers) */
+    tri_list bt = {0};
+    ring = malloc(4 * ((size_t)nbl + 64) * sizeof *ring);
+    double *rt = malloc(2 * ((size_t)nbl + 64) * sizeof *rt);
+    if (!ring || !rt) {
+        free(rt);
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    uint32_t next_id = layer0;
+    for (uint32_t f = 0; f < W->nf && st == SQ_OK; f++) {
+        uint32_t h = W->f_he[f], cid = centre0 + f;
+        do {
+            uint32_t p0 = wid[W->he_vert[h]], p1 = wid[W->he_vert[W->he_next[h]]], nr = 0;
+            if (W->he_face[W->he_twin[h]] == SQ_NONE) {
+                uint32_t i = opos[h], m0 = bidx[c->o2m[h]], m1 = bidx[c->o2m[oseq[(i + 1) % nb]]];
+                for (uint32_t q = (m0 + 1) % nbl; q != m1; q = (q + 1) % nbl) ring[nr++] = q;
+            } else if (mid[h] != SQ_NONE) {
+                ring[nr++] = mid[h];
+            }
+            int r = nr >= 3 ? boundary_layers(&bt, nr, ring, rt, cid, p0, p1, buv, &next_id)
+                            : tri_fan(&bt, cid, p0, nr, ring, p1);
+            if (r) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            h = W->he_next[h];
+        } while (h != W->f_he[f] && st == SQ_OK);
+    }
+    free(rt);
+    btri = bt.t;
+    uint32_t nbt = bt.n;
+    if (st) goto done;
+    assert(next_id == nv);
+    for (uint32_t g = 0; g < nbt; g++)
+        if (sq_orient2d(buv + 2 * (size_t)btri[3 * g], buv + 2 * (size_t)btri[3 * g + 1], buv + 2 * (size_t)btri[3 * g + 2]) <= 0) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangle %u is not positively oriented", g);
+            goto done;
+        }
+    btw = malloc(3 * (size_t)nbt * sizeof *btw);
+    if (!btw) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    if (pair_twins(nbt, btri, btw)) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangulation is not a manifold disk");
+        goto done;
+    }
+    for (uint32_t i = na; i < nv; i++) p3[3 * (size_t)i] = buv[2 * i], p3[3 * (size_t)i + 1] = buv[2 * i + 1];
+    for (uint32_t i = 0; i < nbl; i++) p3[3 * (size_t)i] = buv[2 * i], p3[3 * (size_t)i + 1] = buv[2 * i + 1], p3[3 * (size_t)i + 2] = 0;
+    st = disk_tutte(nbt, btri, btw, na, nv - na, p3, xy, err);
+    if (st) goto done;
+    sq_overlay_mesh A = {S->nf, atri, atw}, B = {nbt, btri, btw};
+    progress(c, "overlay", 0.75);
+    st = sq_overlay_build(nbl, na, nv, xy, &A, &B, steiner_budget(c), &X, err);
+    if (st) goto done;
+    /* the output: S's vertices, then B's interior vertices, then the crossings */
+    uint32_t nout = S->nv + (nv - na) + X.nx;
+    P->nv = nout, P->nf = X.ntri, P->nv_input = S->nv_input, P->nuv = nv + X.nx;
+    P->pos = malloc(3 * (size_t)nout * sizeof *P->pos);
+    P->uv = malloc(2 * (size_t)P->nuv * sizeof *P->uv);
+    P->tri = malloc(3 * (size_t)X.ntri * sizeof *P->tri);
+    P->tri_uv = malloc(3 * (size_t)X.ntri * sizeof *P->tri_uv);
+    P->he_seam = malloc(3 * (size_t)X.ntri);
+    P->he_cut = malloc(3 * (size_t)X.ntri);
+    P->valence = malloc((size_t)S->nv_input * sizeof *P->valence);
+    ptw = malloc(3 * (size_t)X.ntri * sizeof *ptw);
+    if (!P->pos || !P->uv || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->valence || !ptw) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    memcpy(P->pos, S->pos, 3 * (size_t)S->nv * sizeof *P->pos);
+    memcpy(P->valence, valence, (size_t)S->nv_input * sizeof *P->valence);
+    for (uint32_t i = na; i < nv; i++) {
+        const uint32_t *t = atri + 3 * (size_t)X.loc[i];
+        const double *l = X.bary + 3 * (size_t)i;
+        double *p = P->pos + 3 * ((size_t)S->nv + i - na);
+        for (int d = 0; d < 3; d++)
+            p[d] = l[0] * S->pos[3 * (size_t)a2s[t[0]] + d] + l[1] * S->pos[3 * (size_t)a2s[t[1]] + d] +
+                   l[2] * S->pos[3 * (size_t)a2s[t[2]] + d];
+    }
+    for (uint32_t k = 0; k < X.nx; k++) {
+        uint32_t h = X.x_ha[k], h1 = h - h % 3 + (h % 3 + 1) % 3;
+        const double *p0 = S->pos + 3 * (size_t)a2s[atri[h]], *p1 = S->pos + 3 * (size_t)a2s[atri[h1]];
+        double t = X.x_ta[k], *p = P->pos + 3 * ((size_t)S->nv + nv - na + k);
+        for (int d = 0; d < 3; d++) p[d] = (1 - t) * p0[d] + t * p1[d];
+    }
+    /* UVs: the boundary's and B's own; A's interior vertices by their B
+     * triangle; crossings along their B edge */
+    memcpy(P->uv, buv, 2 * (size_t)nbl * sizeof *P->uv);
+    memcpy(P->uv + 2 * (size_t)na, buv + 2 * (size_t)na, 2 * (size_t)(nv - na) * sizeof *P->uv);
+    for (uint32_t i = nbl; i < na; i++) {
+        const uint32_t *t = btri + 3 * (size_t)X.loc[i];
+        const double *l = X.bary + 3 * (size_t)i;
+        for (int d = 0; d < 2; d++)
+            P->uv[2 * (size_t)i + d] = l[0] * buv[2 * (size_t)t[0] + d] + l[1] * buv[2 * (size_t)t[1] + d] +
+                                       l[2] * buv[2 * (size_t)t[2] + d];
+    }
+    for (uint32_t k = 0; k < X.nx; k++) {
+        uint32_t h = X.x_hb[k], h1 = h - h % 3 + (h % 3 + 1) % 3;
+        const double *u0 = buv + 2 * (size_t)btri[h], *u1 = buv + 2 * (size_t)btri[h1];
+        double t = X.x_tb[k];
+        for (int d = 0; d < 2; d++) P->uv[2 * ((size_t)nv + k) + d] = (1 - t) * u0[d] + t * u1[d];
+    }
+    for (uint32_t f = 0; f < X.ntri; f++)
+        for (int i = 0; i < 3; i++) {
+            uint32_t o = X.tri[3 * (size_t)f + i];
+            P->tri_uv[3 * (size_t)f + i] = o;
+            P->tri[3 * (size_t)f + i] = o < na ? a2s[o] : S->nv + (o - na);
+            uint32_t o1 = X.tri[3 * (size_t)f + (i + 1) % 3];
+            P->he_cut[3 * (size_t)f + i] = o < nbl && o1 == (o + 1) % nbl ? S->kind[mseq[o]] : 0;
+        }
+    if (pair_twins(X.ntri, P->tri, ptw)) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the refined surface is not a manifold");
+        goto done;
+    }
+    uint32_t seams = 0, bad = 0, first = SQ_NONE;
+    for (uint32_t k = 0; k < 3 * X.ntri; k++) {
+        uint32_t g = ptw[k];
+        if (g == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the refined surface has a boundary edge");
+            goto done;
+        }
+        uint32_t kn = k - k % 3 + (k % 3 + 1) % 3, gn = g - g % 3 + (g % 3 + 1) % 3;
+        P->he_seam[k] = P->tri_uv[k] != P->tri_uv[gn] || P->tri_uv[kn] != P->tri_uv[g];
+        if (P->he_seam[k] && k < g) seams++;
+    }
+    for (uint32_t f = 0; f < X.ntri; f++)
+        if (sq_orient2d(P->uv + 2 * (size_t)P->tri_uv[3 * f], P->uv + 2 * (size_t)P->tri_uv[3 * f + 1],
+                        P->uv + 2 * (size_t)P->tri_uv[3 * f + 2]) <= 0) {
+            if (first == SQ_NONE) first = f;
+            bad++;
+        }
+    stats->verts_out = P->nv, stats->faces_out = P->nf;
+    stats->steiner = P->nv - P->nv_input;
+    stats->nuv = P->nuv;
+    stats->seam_edges = seams;
+    if (!bad) distortion(P, stats);
+    if (bad && !c->keep_flips)
+        st = sq_error_set(err, SQ_ERR_SOLVER,
+                          "the interior map (overlay) is not injective in floating point: %u of %u UV "
+                          "triangles are not positively oriented (first: face %u)",
+                          bad, P->nf, first);
+done:
+    sq_overlay_free(&X);
+    free(oseq), free(opos), free(bidx), free(mseq), free(aid), free(wid), free(mid);
+    free(a2s), free(btri), free(btw), free(atri), free(atw), free(ring), free(ptw);
+    free(xy), free(p3), free(buv);
+    return st;
+}
+
 /* One attempt with the options as given (opt and stats are never NULL here;
  * the cone set has passed its checks), with up to opt->refine rounds of
  * step 7c. */
@@ -2239,6 +2761,21 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     st = boundary_map(&c);
     if (st) goto done;
     double t2 = sq_now(), t_round = t2, t3 = t2; /* t_round: the last round's start */
+    if (opt->interior == SQ_INTERIOR_OVERLAY) {
+        progress(&c, "disk maps", 0.55);
+        stats->overlay = 1;
+        st = overlay_map(&c, valence, out, stats);
+        if (st) goto done;
+        out->domain = c.D, out->tree = c.T, out->omega = c.O;
+        c.D = NULL, c.T = NULL, c.O = NULL;
+        double t5 = sq_now();
+        stats->t_tree = t1 - t0;
+        stats->t_boundary = t2 - t1;
+        stats->t_tutte = t5 - t2;
+        stats->t_total = t5 - t_start;
+        progress(&c, "done", 1.0);
+        goto done;
+    }
     if (opt->refine) st = before_cells_save(&c, &saved);
     for (uint32_t round = 0; st == SQ_OK; round++) {
         if (cancelled(&c)) {

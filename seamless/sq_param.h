@@ -78,7 +78,14 @@ typedef struct sq_param_options {
      * passes (later ones are cancelled, earlier ones awaited); memory grows
      * with the attempts running. */
     uint32_t threads;
+    /* The interior map (steps 6-7), SQ_INTERIOR_*: Omega cut into
+     * rectangles by chords replayed on the surface, each cell mapped by
+     * Tutte (with refinement rounds), or the overlay of the two disk maps
+     * (sq_overlay.h). Default SQ_INTERIOR_CELLS. */
+    int interior;
 } sq_param_options;
+
+enum { SQ_INTERIOR_CELLS = 0, SQ_INTERIOR_OVERLAY = 1 };
 
 #define SQ_PARAM_REFINE 8
 
@@ -136,6 +143,7 @@ typedef struct sq_param_stats {
     uint64_t seed_used;                     /* cut-graph seed of the result   */
     int guided;                             /* 1: seed 9.2 guidance was used  */
     int surface_tree;                       /* 1: the seed 9.4 surface tree   */
+    int overlay;                            /* 1: interior map by overlay     */
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
 } sq_param_stats;

@@ -134,6 +134,23 @@ want='j["guided"] and not j["surface_tree"] and j["seed_used"]==2' passes_at cup
 passes_at sculpt 20 --tree domain
 passes_at holes3 111
 
+# --- --interior overlay: the cut surface and Omega on one disk, their
+# common refinement (no chords, no cells, no rounds): genus 2 (eight),
+# genus 1 (knot1), genus 0 (helmet) ---------------------------------------------
+want='j["interior"]=="overlay" and j["chords"]==0 and j["faces_out"] > 20000' passes_at eight 1 --interior overlay
+want='j["interior"]=="overlay" and j["genus"]==1' passes_at knot1 1 --interior overlay
+want='j["interior"]=="overlay" and j["genus"]==0' passes_at helmet 1 --interior overlay
+# where Omega's shape is far from the surface's the crossings pass the
+# Steiner budget: a clean failure (status 3, the cause named, nothing written)
+"$bin" param "$shared/data/mpz/femur.obj" --cones "$shared/data/mpz/femur_Th_hat" -o "$tmp/ov_femur.obj" \
+  --attempts 1 --interior overlay --quiet >/dev/null 2>"$tmp/ov_femur.err"
+rc=$?
+if [ $rc -eq 3 ] && grep -q 'crossings of surface and domain edges' "$tmp/ov_femur.err" && [ ! -e "$tmp/ov_femur.obj" ]; then
+  ok; echo "PASS --interior overlay: mpz/femur seed 1 over the budget, exit 3, nothing written"
+else
+  bad "--interior overlay femur: rc=$rc $(tail -1 "$tmp/ov_femur.err")"
+fi
+
 # --- genus 1 with --guide on: Algorithm 1 for the meta-6-gon, the
 # meta-2-gon's cones near the circle (seed 9.2 per piece): mpz/knot1
 # passes with the surface tree, in fewer faces than unguided ------------------

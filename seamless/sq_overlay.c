@@ -1,0 +1,427 @@
+/* seamquad: common refinement of two triangulations of one polygon
+ * (sq_overlay.h). */
+#include "sq_overlay.h"
+
+#include <assert.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sq_mesh.h"
+#include "sq_predicates.h"
+
+void sq_overlay_init(sq_overlay *X) { memset(X, 0, sizeof *X); }
+
+void sq_overlay_free(sq_overlay *X)
+{
+    free(X->x_ha);
+    free(X->x_hb);
+    free(X->x_ta);
+    free(X->x_tb);
+    free(X->loc);
+    free(X->bary);
+    free(X->tri);
+    free(X->tri_fa);
+    free(X->tri_fb);
+    sq_overlay_init(X);
+}
+
+typedef struct ov {
+    uint32_t nbnd, na, nv;
+    const double *xy;
+    const sq_overlay_mesh *A, *B;
+    sq_overlay *X;
+    uint32_t cap_x;
+    uint64_t *hkey; /* crossing table: key (A edge << 32 | B edge) + 1, 0 empty */
+    uint32_t *hval;
+    uint32_t hcap;
+    uint64_t rng;
+    int degenerate; /* set by the predicates below */
+} ov;
+
+static inline uint32_t nxt(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
+
+static int orient(ov *c, uint32_t p, uint32_t q, uint32_t r)
+{
+    return sq_orient2d(c->xy + 2 * (size_t)p, c->xy + 2 * (size_t)q, c->xy + 2 * (size_t)r);
+}
+
+/* The sign of r against the line p -> q; 0 when r is p or q (the input's
+ * sharing), and a flagged 0 when it is exactly on the line otherwise. */
+static int side(ov *c, uint32_t p, uint32_t q, uint32_t r)
+{
+    if (r == p || r == q) return 0;
+    int s = orient(c, p, q, r);
+    if (!s) c->degenerate = 1;
+    return s;
+}
+
+/* Direction p -> x strictly before p -> y counterclockwise (both inside
+ * one fan of angle below pi at the boundary vertex p). */
+static int before(ov *c, uint32_t p, uint32_t x, uint32_t y)
+{
+    if (x == y) return 0;
+    int s = orient(c, p, x, y);
+    if (!s) c->degenerate = 1;
+    return s > 0;
+}
+
+static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
+{
+    const sq_overlay_mesh *A = c->A, *B = c->B;
+    if (A->twin[ha] != SQ_NONE && A->twin[ha] < ha) ha = A->twin[ha];
+    if (B->twin[hb] != SQ_NONE && B->twin[hb] < hb) hb = B->twin[hb];
+    uint64_t key = ((uint64_t)ha << 32 | hb) + 1;
+    if (2 * (size_t)(c->X->nx + 1) > c->hcap) {
+        uint32_t cap = c->hcap ? 2 * c->hcap : 1024;
+        uint64_t *k2 = calloc(cap, sizeof *k2);
+        uint32_t *v2 = malloc((size_t)cap * sizeof *v2);
+        if (!k2 || !v2) {
+            free(k2), free(v2);
+            return -1;
+        }
+        for (uint32_t i = 0; i < c->hcap; i++) {
+            if (!c->hkey[i]) continue;
+            uint32_t s = (uint32_t)((c->hkey[i] * 0x9E3779B97F4A7C15ull) >> 32) & (cap - 1);
+            while (k2[s]) s = (s + 1) & (cap - 1);
+            k2[s] = c->hkey[i], v2[s] = c->hval[i];
+        }
+        free(c->hkey), free(c->hval);
+        c->hkey = k2, c->hval = v2, c->hcap = cap;
+    }
+    uint32_t s = (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 32) & (c->hcap - 1);
+    while (c->hkey[s] && c->hkey[s] != key) s = (s + 1) & (c->hcap - 1);
+    if (c->hkey[s]) {
+        *id = c->hval[s];
+        return 0;
+    }
+    sq_overlay *X = c->X;
+    if (X->nx == c->cap_x) {
+        uint32_t cap = c->cap_x ? 2 * c->cap_x : 1024;
+        uint32_t *a = realloc(X->x_ha, cap * sizeof *a);
+        if (a) X->x_ha = a;
+        uint32_t *b = realloc(X->x_hb, cap * sizeof *b);
+        if (b) X->x_hb = b;
+        double *ta = realloc(X->x_ta, cap * sizeof *ta);
+        if (ta) X->x_ta = ta;
+        double *tb = realloc(X->x_tb, cap * sizeof *tb);
+        if (tb) X->x_tb = tb;
+        if (!a || !b || !ta || !tb) return -1;
+        c->cap_x = cap;
+    }
+    /* parameters from the (rounded) determinants; the order of events was
+     * decided exactly, these only place the point */
+    const double *p0 = c->xy + 2 * (size_t)A->tri[ha], *p1 = c->xy + 2 * (size_t)A->tri[nxt(ha)];
+    const double *q0 = c->xy + 2 * (size_t)B->tri[hb], *q1 = c->xy + 2 * (size_t)B->tri[nxt(hb)];
+    double d0 = (q1[0] - q0[0]) * (p0[1] - q0[1]) - (q1[1] - q0[1]) * (p0[0] - q0[0]);
+    double d1 = (q1[0] - q0[0]) * (p1[1] - q0[1]) - (q1[1] - q0[1]) * (p1[0] - q0[0]);
+    double e0 = (p1[0] - p0[0]) * (q0[1] - p0[1]) - (p1[1] - p0[1]) * (q0[0] - p0[0]);
+    double e1 = (p1[0] - p0[0]) * (q1[1] - p0[1]) - (p1[1] - p0[1]) * (q1[0] - p0[0]);
+    double ta = d0 / (d0 - d1), tb = e0 / (e0 - e1);
+    if (!(ta >= 0 && ta <= 1)) ta = ta > 1 ? 1 : ta < 0 ? 0 : 0.5; /* NaN: 0.5 */
+    if (!(tb >= 0 && tb <= 1)) tb = tb > 1 ? 1 : tb < 0 ? 0 : 0.5;
+    uint32_t k = X->nx++;
+    X->x_ha[k] = ha, X->x_hb[k] = hb, X->x_ta[k] = ta, X->x_tb[k] = tb;
+    c->hkey[s] = key, c->hval[s] = c->nv + k;
+    *id = c->nv + k;
+    return 0;
+}
+
+static void barycentric(const double *p, const double *a, const double *b, const double *d, double *l)
+{
+    double det = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+    double l1 = ((p[0] - a[0]) * (d[1] - a[1]) - (p[1] - a[1]) * (d[0] - a[0])) / det;
+    double l2 = ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) / det;
+    l[0] = 1 - l1 - l2, l[1] = l1, l[2] = l2;
+}
+
+/* The intersection of A's face fa and B's face fb: its vertices in
+ * counterclockwise order (ids; crossings created on demand) into poly.
+ * Returns their count (0: no common area), -1 on a degenerate or
+ * inconsistent configuration, -2 out of memory. */
+static int pair_polygon(ov *c, uint32_t fa, uint32_t fb, uint32_t poly[15])
+{
+    const uint32_t *a = c->A->tri + 3 * (size_t)fa, *b = c->B->tri + 3 * (size_t)fb;
+    int sA[3][3], sB[3][3]; /* sA[i][j]: A vertex i against B edge j */
+    c->degenerate = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            sA[i][j] = side(c, b[j], b[(j + 1) % 3], a[i]);
+            sB[j][i] = side(c, a[i], a[(i + 1) % 3], b[j]);
+        }
+    if (c->degenerate) return -1;
+    /* local points: A vertex i -> i, B vertex j -> 3 + j (or the A vertex
+     * it is), crossing of A edge i and B edge j -> 6 + 3 i + j */
+    int mem[15] = {0}, alias[3] = {-1, -1, -1};
+    for (int i = 0; i < 3; i++) {
+        int j = 0;
+        while (j < 3 && a[i] != b[j]) j++;
+        if (j < 3) {
+            uint32_t p = a[i];
+            mem[i] = before(c, p, b[(j + 1) % 3], a[(i + 2) % 3]) && before(c, p, a[(i + 1) % 3], b[(j + 2) % 3]);
+            alias[j] = i;
+        } else {
+            mem[i] = sA[i][0] > 0 && sA[i][1] > 0 && sA[i][2] > 0;
+        }
+    }
+    for (int j = 0; j < 3; j++)
+        if (alias[j] < 0) mem[3 + j] = sB[j][0] > 0 && sB[j][1] > 0 && sB[j][2] > 0;
+    if (c->degenerate) return -1;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            mem[6 + 3 * i + j] = sA[i][j] * sA[(i + 1) % 3][j] < 0 && sB[j][i] * sB[(j + 1) % 3][i] < 0;
+    int nx_[15];
+    for (int k = 0; k < 15; k++) nx_[k] = -1;
+    /* the supporting edges: each holds 0, 1 or 2 polygon vertices, in
+     * order along it: its start, the entry crossing, the exit, its end */
+    for (int e = 0; e < 6; e++) {
+        int isA = e < 3, i = e % 3;
+        if (!isA) { /* skip a B edge that is an A edge (the shared boundary) */
+            int same = 0;
+            for (int q = 0; q < 3; q++)
+                if (a[q] == b[i] && a[(q + 1) % 3] == b[(i + 1) % 3]) same = 1;
+            if (same) continue;
+        }
+        int list[4], n = 0;
+        int s0 = isA ? i : (alias[i] >= 0 ? alias[i] : 3 + i);
+        int i1 = (i + 1) % 3;
+        int s1 = isA ? i1 : (alias[i1] >= 0 ? alias[i1] : 3 + i1);
+        if (mem[s0]) list[n++] = s0;
+        int entry = -1, exit_ = -1;
+        for (int o = 0; o < 3; o++) {
+            int x = isA ? 6 + 3 * i + o : 6 + 3 * o + i;
+            if (!mem[x]) continue;
+            int s = isA ? sA[i][o] : sB[i][o]; /* the start's side of the other edge */
+            if (s < 0) {
+                if (entry >= 0) return -1;
+                entry = x;
+            } else {
+                if (exit_ >= 0) return -1;
+                exit_ = x;
+            }
+        }
+        if (entry >= 0) list[n++] = entry;
+        if (exit_ >= 0) {
+            if (n == 2) return -1;
+            list[n++] = exit_;
+        }
+        if (mem[s1]) {
+            if (n == 2) return -1;
+            list[n++] = s1;
+        }
+        if (n == 2) {
+            if (nx_[list[0]] >= 0) return -1;
+            nx_[list[0]] = list[1];
+        }
+    }
+    int m = 0, start = -1;
+    for (int k = 0; k < 15; k++)
+        if (mem[k] && !(k >= 3 && k < 6 && alias[k - 3] >= 0)) {
+            m++;
+            if (nx_[k] >= 0 && start < 0) start = k;
+        }
+    if (start < 0) return m <= 2 ? 0 : -1;
+    int n = 0, k = start;
+    do {
+        if (n == 15 || !mem[k]) return -1;
+        poly[n++] = (uint32_t)k;
+        k = nx_[k];
+    } while (k >= 0 && k != start);
+    if (k != start || n != m) return -1;
+    if (n < 3) return 0;
+    /* local points -> ids */
+    for (int q = 0; q < n; q++) {
+        uint32_t l = poly[q];
+        if (l < 3) {
+            poly[q] = a[l];
+            uint32_t v = a[l];
+            if (v >= c->nbnd && c->X->loc[v] == SQ_NONE) {
+                c->X->loc[v] = fb;
+                barycentric(c->xy + 2 * (size_t)v, c->xy + 2 * (size_t)b[0], c->xy + 2 * (size_t)b[1],
+                            c->xy + 2 * (size_t)b[2], c->X->bary + 3 * (size_t)v);
+            }
+        } else if (l < 6) {
+            uint32_t v = b[l - 3];
+            poly[q] = v;
+            if (v >= c->na && c->X->loc[v] == SQ_NONE) {
+                c->X->loc[v] = fa;
+                barycentric(c->xy + 2 * (size_t)v, c->xy + 2 * (size_t)a[0], c->xy + 2 * (size_t)a[1],
+                            c->xy + 2 * (size_t)a[2], c->X->bary + 3 * (size_t)v);
+            }
+        } else {
+            uint32_t i = (l - 6) / 3, j = (l - 6) % 3;
+            if (crossing_id(c, 3 * fa + i, 3 * fb + j, &poly[q])) return -2;
+        }
+    }
+    return n;
+}
+
+static int emit(ov *c, const uint32_t *poly, int n, uint32_t fa, uint32_t fb)
+{
+    sq_overlay *X = c->X;
+    for (int k = 1; k + 1 < n; k++) {
+        if (X->ntri == X->cap_tri) {
+            uint32_t cap = X->cap_tri ? 2 * X->cap_tri : 4096;
+            uint32_t *t = realloc(X->tri, 3 * (size_t)cap * sizeof *t);
+            if (t) X->tri = t;
+            uint32_t *ta = realloc(X->tri_fa, cap * sizeof *ta);
+            if (ta) X->tri_fa = ta;
+            uint32_t *tb = realloc(X->tri_fb, cap * sizeof *tb);
+            if (tb) X->tri_fb = tb;
+            if (!t || !ta || !tb) return -1;
+            X->cap_tri = cap;
+        }
+        uint32_t *t = X->tri + 3 * (size_t)X->ntri;
+        t[0] = poly[0], t[1] = poly[k], t[2] = poly[k + 1];
+        X->tri_fa[X->ntri] = fa, X->tri_fb[X->ntri] = fb;
+        X->ntri++;
+    }
+    return 0;
+}
+
+static uint32_t rnd(ov *c)
+{
+    c->rng ^= c->rng << 13;
+    c->rng ^= c->rng >> 7;
+    c->rng ^= c->rng << 17;
+    return (uint32_t)(c->rng >> 11);
+}
+
+/* The face of A holding point p strictly inside, by a randomized walk from
+ * face f (terminates with probability 1 on any triangulation). SQ_NONE:
+ * outside, degenerate (p on an edge of A) or too many steps. */
+static uint32_t locate(ov *c, uint32_t f, uint32_t p)
+{
+    const sq_overlay_mesh *A = c->A;
+    for (uint64_t steps = 0; steps < 8 * (uint64_t)A->nf + 64; steps++) {
+        uint32_t r = rnd(c) % 3, moved = 0;
+        for (uint32_t k = 0; k < 3 && !moved; k++) {
+            uint32_t e = (r + k) % 3, h = 3 * f + e;
+            int s = orient(c, A->tri[h], A->tri[nxt(h)], p);
+            if (s > 0) continue;
+            if (s == 0) {
+                c->degenerate = 1;
+                return SQ_NONE;
+            }
+            if (A->twin[h] == SQ_NONE) return SQ_NONE;
+            f = A->twin[h] / 3;
+            moved = 1;
+        }
+        if (!moved) return f;
+    }
+    return SQ_NONE;
+}
+
+static uint32_t bad_faces(const double *xy, const sq_overlay_mesh *M)
+{
+    uint32_t bad = 0;
+    for (uint32_t f = 0; f < M->nf; f++) {
+        const uint32_t *t = M->tri + 3 * (size_t)f;
+        if (sq_orient2d(xy + 2 * (size_t)t[0], xy + 2 * (size_t)t[1], xy + 2 * (size_t)t[2]) <= 0) bad++;
+    }
+    return bad;
+}
+
+sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
+                           const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
+                           sq_overlay *out, sq_error *err)
+{
+    sq_overlay_init(out);
+    if (!xy || !A || !B || nbnd < 3 || na < nbnd || nv < na || !A->nf || !B->nf)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "overlay: bad arguments");
+    uint32_t ba = bad_faces(xy, A), bb = bad_faces(xy, B);
+    if (ba || bb)
+        return sq_error_set(err, SQ_ERR_SOLVER,
+                            "overlay: the disk maps are not embeddings in floating point (%u of %u "
+                            "surface triangles, %u of %u domain triangles not positively oriented)",
+                            ba, A->nf, bb, B->nf);
+    ov c;
+    memset(&c, 0, sizeof c);
+    c.nbnd = nbnd, c.na = na, c.nv = nv, c.xy = xy, c.A = A, c.B = B, c.X = out;
+    c.rng = 0x2545F4914F6CDD1Dull;
+    sq_status st = SQ_OK;
+    uint32_t *mark = malloc((size_t)A->nf * sizeof *mark);
+    uint32_t *queue = malloc((size_t)A->nf * sizeof *queue);
+    out->loc = malloc((size_t)nv * sizeof *out->loc);
+    out->bary = calloc(3 * (size_t)nv, sizeof *out->bary);
+    if (!mark || !queue || !out->loc || !out->bary) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t f = 0; f < A->nf; f++) mark[f] = SQ_NONE;
+    for (uint32_t v = 0; v < nv; v++) out->loc[v] = SQ_NONE;
+    uint32_t hint = 0;
+    for (uint32_t g = 0; g < B->nf; g++) {
+        const uint32_t *t = B->tri + 3 * (size_t)g;
+        uint32_t b = SQ_NONE;
+        for (int k = 0; k < 3 && b == SQ_NONE; k++)
+            if (t[k] >= na) b = t[k];
+        if (b == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: domain triangle %u has no interior vertex", g);
+            goto done;
+        }
+        uint32_t seed = out->loc[b];
+        if (seed == SQ_NONE) {
+            c.degenerate = 0;
+            seed = locate(&c, hint, b);
+            if (seed == SQ_NONE) {
+                st = sq_error_set(err, c.degenerate ? SQ_ERR_SOLVER : SQ_ERR_INTERNAL,
+                                  "overlay: domain vertex %u %s", b,
+                                  c.degenerate ? "lies on a surface edge (degenerate)"
+                                               : "is not inside the surface's disk");
+                goto done;
+            }
+        }
+        hint = seed;
+        uint32_t qh = 0, qt = 0, npieces = 0;
+        queue[qt++] = seed;
+        mark[seed] = g;
+        while (qh < qt) {
+            uint32_t fa = queue[qh++];
+            uint32_t poly[15];
+            int n = pair_polygon(&c, fa, g, poly);
+            if (n == -2 || (n > 0 && emit(&c, poly, n, fa, g))) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                goto done;
+            }
+            if (n < 0) {
+                st = sq_error_set(err, SQ_ERR_SOLVER,
+                                  "overlay: degenerate or inconsistent intersection of surface "
+                                  "triangle %u and domain triangle %u",
+                                  fa, g);
+                goto done;
+            }
+            if (n == 0) continue;
+            npieces++;
+            for (uint32_t i = 0; i < 3; i++) {
+                uint32_t tw = A->twin[3 * fa + i];
+                if (tw == SQ_NONE || mark[tw / 3] == g) continue;
+                mark[tw / 3] = g;
+                queue[qt++] = tw / 3;
+            }
+        }
+        if (max_crossings && out->nx > max_crossings) {
+            st = sq_error_set(err, SQ_ERR_SOLVER,
+                              "overlay: more than %llu crossings of surface and domain edges (after %u of "
+                              "%u domain triangles): the two disk maps differ too much",
+                              (unsigned long long)max_crossings, g + 1, B->nf);
+            goto done;
+        }
+        if (!npieces) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: domain triangle %u meets no surface triangle", g);
+            goto done;
+        }
+    }
+    /* every interior vertex of either mesh must have been placed */
+    for (uint32_t v = nbnd; v < nv; v++)
+        if (out->loc[v] == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: vertex %u lies in no triangle of the other mesh", v);
+            goto done;
+        }
+done:
+    free(mark);
+    free(queue);
+    free(c.hkey);
+    free(c.hval);
+    if (st) sq_overlay_free(out);
+    return st;
+}
