@@ -2760,21 +2760,14 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     for (uint32_t h = 0; h < c.O->cut.nh; h++) c.o2m[h] = SQ_NONE;
     st = boundary_map(&c);
     if (st) goto done;
-    double t2 = sq_now(), t_round = t2, t3 = t2; /* t_round: the last round's start */
-    if (opt->interior == SQ_INTERIOR_OVERLAY) {
+    double t2 = sq_now(), t_round = t2, t3 = t2, t4; /* t_round: the last round's start */
+    if (opt->interior == SQ_INTERIOR_OVERLAY) { /* step 7' instead of 6-7c */
         progress(&c, "disk maps", 0.55);
         stats->overlay = 1;
-        st = overlay_map(&c, valence, out, stats);
+        st = overlay_map(&c, valence, out, stats); /* checks every triangle too */
         if (st) goto done;
-        out->domain = c.D, out->tree = c.T, out->omega = c.O;
-        c.D = NULL, c.T = NULL, c.O = NULL;
-        double t5 = sq_now();
-        stats->t_tree = t1 - t0;
-        stats->t_boundary = t2 - t1;
-        stats->t_tutte = t5 - t2;
-        stats->t_total = t5 - t_start;
-        progress(&c, "done", 1.0);
-        goto done;
+        t4 = sq_now();
+        goto finish;
     }
     if (opt->refine) st = before_cells_save(&c, &saved);
     for (uint32_t round = 0; st == SQ_OK; round++) {
@@ -2819,10 +2812,11 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
         stats->cells_refined += halved;
     }
     if (st) goto done;
-    double t4 = sq_now();
+    t4 = sq_now();
     progress(&c, "check", 0.9);
     st = assemble(&c, v_uv, valence, out, stats);
     if (st) goto done;
+finish:
     out->domain = c.D, out->tree = c.T, out->omega = c.O;
     c.D = NULL, c.T = NULL, c.O = NULL;
     double t5 = sq_now();
