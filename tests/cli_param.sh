@@ -136,10 +136,10 @@ passes_at holes3 111
 
 # --- --interior overlay: the cut surface and Omega on one disk, their
 # common refinement (no chords, no cells, no rounds): genus 2 (eight),
-# genus 1 (knot1), genus 0 (helmet) ---------------------------------------------
+# genus 1 (knot1), genus 3 (helmet) ------------------------------------------
 want='j["interior"]=="overlay" and j["chords"]==0 and j["faces_out"] > 20000' passes_at eight 1 --interior overlay
 want='j["interior"]=="overlay" and j["genus"]==1' passes_at knot1 1 --interior overlay
-want='j["interior"]=="overlay" and j["genus"]==0' passes_at helmet 1 --interior overlay
+want='j["interior"]=="overlay" and j["genus"]==3' passes_at helmet 1 --interior overlay
 # where Omega's shape is far from the surface's the crossings pass the
 # Steiner budget: a clean failure (status 3, the cause named, nothing written)
 "$bin" param "$shared/data/mpz/femur.obj" --cones "$shared/data/mpz/femur_Th_hat" -o "$tmp/ov_femur.obj" \
