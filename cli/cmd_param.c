@@ -107,15 +107,17 @@ static void help(FILE *f)
             "                      domain (seed 9.4); domain takes the domain's own\n"
             "                      shortest tree (passes less often, less distortion when\n"
             "                      it does); alternate tries both on each cut-graph seed\n"
-            "  --interior MODE     the interior map: cells (default) cuts Omega into\n"
-            "                      rectangles by chords replayed on the surface and maps\n"
-            "                      each cell by Tutte (with --refine rounds); overlay maps\n"
-            "                      the cut surface and Omega onto one disk (same boundary\n"
-            "                      points) and takes their common refinement: bijective\n"
-            "                      for any Omega, no chords, no rounds, but every crossing\n"
-            "                      of the two meshes in the disk is a Steiner vertex, and\n"
-            "                      where the domain's shape is far from the surface's they\n"
-            "                      exceed --max-steiner (docs/param.md, step 7')\n"
+            "  --interior MODE     the interior map: cells cuts Omega into rectangles by\n"
+            "                      chords replayed on the surface and maps each cell by\n"
+            "                      Tutte (with --refine rounds); overlay maps the cut\n"
+            "                      surface and Omega onto one disk (same boundary points)\n"
+            "                      and takes their common refinement: bijective for any\n"
+            "                      Omega, no chords, no rounds, far less distorted, but\n"
+            "                      every crossing of the two meshes in the disk is a\n"
+            "                      Steiner vertex, and where the domain's shape is far\n"
+            "                      from the surface's they exceed --max-steiner; auto\n"
+            "                      (default): cells, then the overlay on the same cuts,\n"
+            "                      whose map is kept when it passes (docs/param.md, 7')\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -388,7 +390,7 @@ int sq_cmd_param(int argc, char **argv)
     unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS, refine = SQ_PARAM_REFINE, max_steiner = 0;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     unsigned long long threads = ncpu > 1 ? 2 : 1;
-    int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE, interior = SQ_INTERIOR_CELLS;
+    int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE, interior = SQ_INTERIOR_AUTO;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -430,10 +432,11 @@ int sq_cmd_param(int argc, char **argv)
             }
         } else if (!strcmp(a, "--interior") && has) {
             const char *arg = argv[++i];
-            if (!strcmp(arg, "cells")) interior = SQ_INTERIOR_CELLS;
+            if (!strcmp(arg, "auto")) interior = SQ_INTERIOR_AUTO;
+            else if (!strcmp(arg, "cells")) interior = SQ_INTERIOR_CELLS;
             else if (!strcmp(arg, "overlay")) interior = SQ_INTERIOR_OVERLAY;
             else {
-                fprintf(stderr, "seamquad param: --interior takes cells or overlay, got '%s'\n", arg);
+                fprintf(stderr, "seamquad param: --interior takes auto, cells or overlay, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--guide") && has) {

@@ -2699,6 +2699,39 @@ done:
     return st;
 }
 
+/* SQ_INTERIOR_AUTO: the cells have passed; the overlay (step 7') on the
+ * same cut, tree and boundary map (the state saved before the cells)
+ * replaces their map when it passes as well: it is far less distorted
+ * (docs/param.md, step 7'). Its failure (over the budget, degenerate) is
+ * not an error: the cells' map stays. Only running out of memory is. */
+static sq_status overlay_after_cells(ctx *c, const before_cells *saved, const int32_t *valence,
+                                     sq_param *out, sq_param_stats *stats)
+{
+    sq_param P;
+    sq_param_init(&P);
+    sq_param_stats s = *stats;
+    sq_error e, *keep = c->err;
+    sq_error_clear(&e);
+    c->err = &e;
+    free(c->h_uv); /* it describes the surface being dropped */
+    c->h_uv = NULL;
+    progress(c, "overlay (after the cells)", 0.9);
+    sq_status st = before_cells_restore(c, saved);
+    if (st == SQ_OK) st = overlay_map(c, valence, &P, &s);
+    c->err = keep;
+    if (st == SQ_OK) {
+        sq_param_free(out);
+        *out = P;
+        s.overlay = 1;
+        s.chords = s.cells = s.rounds = s.cells_refined = 0;
+        *stats = s;
+        return SQ_OK;
+    }
+    sq_param_free(&P);
+    if (st == SQ_ERR_NOMEM) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    return SQ_OK;
+}
+
 /* One attempt with the options as given (opt and stats are never NULL here;
  * the cone set has passed its checks), with up to opt->refine rounds of
  * step 7c. */
@@ -2769,7 +2802,8 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
         t4 = sq_now();
         goto finish;
     }
-    if (opt->refine) st = before_cells_save(&c, &saved);
+    int then_overlay = opt->interior == SQ_INTERIOR_AUTO && !c.keep_flips;
+    if (opt->refine || then_overlay) st = before_cells_save(&c, &saved);
     for (uint32_t round = 0; st == SQ_OK; round++) {
         if (cancelled(&c)) {
             st = sq_error_set(err, SQ_ERR_SOLVER, "cancelled: an earlier attempt passed");
@@ -2815,6 +2849,8 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     t4 = sq_now();
     progress(&c, "check", 0.9);
     st = assemble(&c, v_uv, valence, out, stats);
+    if (st) goto done;
+    if (then_overlay) st = overlay_after_cells(&c, &saved, valence, out, stats);
     if (st) goto done;
 finish:
     out->domain = c.D, out->tree = c.T, out->omega = c.O;

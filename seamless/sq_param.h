@@ -80,12 +80,14 @@ typedef struct sq_param_options {
     uint32_t threads;
     /* The interior map (steps 6-7), SQ_INTERIOR_*: Omega cut into
      * rectangles by chords replayed on the surface, each cell mapped by
-     * Tutte (with refinement rounds), or the overlay of the two disk maps
-     * (sq_overlay.h). Default SQ_INTERIOR_CELLS. */
+     * Tutte (with refinement rounds); or the overlay of the two disk maps
+     * (sq_overlay.h; step 7'); or both (auto, the default): the cells, and
+     * when they pass, the overlay on the same cuts, whose map replaces
+     * theirs if it passes too (far less distorted; docs/param.md). */
     int interior;
 } sq_param_options;
 
-enum { SQ_INTERIOR_CELLS = 0, SQ_INTERIOR_OVERLAY = 1 };
+enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2 };
 
 #define SQ_PARAM_REFINE 8
 

@@ -138,6 +138,10 @@ passes_at holes3 111
 # common refinement (no chords, no cells, no rounds): genus 2 (eight),
 # genus 1 (knot1), genus 3 (helmet) ------------------------------------------
 want='j["interior"]=="overlay" and j["chords"]==0 and j["faces_out"] > 20000' passes_at eight 1 --interior overlay
+# the default (auto): the cells, then the overlay, kept where it passes
+# (eight), the cells' map where it does not (sculpt seed 1)
+want='j["interior"]=="overlay" and j["distortion"]["conformal_mean"] < 1000' passes_at eight 1
+want='j["interior"]=="cells" and j["chords"] > 0' passes_at sculpt 1
 want='j["interior"]=="overlay" and j["genus"]==1' passes_at knot1 1 --interior overlay
 want='j["interior"]=="overlay" and j["genus"]==3' passes_at helmet 1 --interior overlay
 # where Omega's shape is far from the surface's the crossings pass the
@@ -154,7 +158,7 @@ fi
 # --- genus 1 with --guide on: Algorithm 1 for the meta-6-gon, the
 # meta-2-gon's cones near the circle (seed 9.2 per piece): mpz/knot1
 # passes with the surface tree, in fewer faces than unguided ------------------
-want='j["guided"] and j["surface_tree"] and j["genus"]==1 and j["faces_out"] < 8000' passes_at knot1 1 --guide on
+want='j["guided"] and j["surface_tree"] and j["genus"]==1 and j["faces_out"] < 8000' passes_at knot1 1 --guide on --interior cells
 # a torus without cones has no pieces: --guide on still maps it
 torus=$shared/data/gpjs/torus.obj
 python3 -c 'import math,sys; print("\n".join(["%.17g" % (2 * math.pi)] * int(sys.argv[1])))' \
@@ -168,16 +172,17 @@ else
 fi
 
 # --- refinement rounds (step 7c): mpz/helmet seed 1 fails without them and
-# passes with them; --json counts the rounds, the text report names them --
+# passes with them; --json counts the rounds, the text report names them
+# (the cells alone: by default the overlay's map would replace theirs) --
 helmet=$shared/data/mpz/helmet.obj
 "$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h0.obj" --attempts 1 --refine 0 \
   --quiet >/dev/null 2>"$tmp/h0.err"
 rc0=$?
 "$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h1.obj" --attempts 1 --json \
-  --quiet >"$tmp/h1.json" 2>"$tmp/h1.err"
+  --interior cells --quiet >"$tmp/h1.json" 2>"$tmp/h1.err"
 rc1=$?
 "$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h2.obj" --attempts 1 \
-  --quiet >"$tmp/h2.txt" 2>/dev/null
+  --interior cells --quiet >"$tmp/h2.txt" 2>/dev/null
 if [ $rc0 -eq 3 ] && grep -q "not injective in floating point" "$tmp/h0.err" && [ ! -e "$tmp/h0.obj" ] \
     && [ $rc1 -eq 0 ] && grep -q "^refinement  *[0-9]* rounds" "$tmp/h2.txt" \
     && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["refine_rounds"]>=1 and j["cells_halved"]>=j["refine_rounds"] and j["attempts"]==1 and j["cells"]==j["chords"]+1, j' "$tmp/h1.json" \

@@ -90,6 +90,9 @@ static char *referee(const model *M, const char *obj, int *rc)
     return buf;
 }
 
+/* mpz/eight with the default options, with the cells only and with the
+ * overlay only (step 7'): all three pass; the default keeps the overlay's
+ * map, which is far less distorted than the cells' */
 static void test_eight_passes(void **state)
 {
     (void)state;
@@ -107,8 +110,37 @@ static void test_eight_passes(void **state)
     assert_memory_equal(P.pos, M.m.pos, 3 * (size_t)M.m.nv * sizeof(double));
     assert_int_equal(st.genus, 2);
     assert_int_equal(st.ncones, 8);
-    assert_int_equal(st.cells, st.chords + 1);
+    /* the default (SQ_INTERIOR_AUTO): the cells pass, then the overlay on
+     * the same cuts passes too and its map is kept */
+    assert_int_equal(st.overlay, 1);
+    assert_true(st.chords == 0 && st.cells == 0 && st.rounds == 0);
     assert_referee_passes(&M, &P, "eight");
+    /* the cells alone: a map too, far more distorted */
+    sq_param Pc;
+    sq_param_init(&Pc);
+    sq_param_stats sc;
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.interior = SQ_INTERIOR_CELLS;
+    s = sq_param_build(&M.m, M.val, &opt, &Pc, &sc, &err);
+    if (s) fail_msg("eight, cells: %s", err.msg);
+    assert_int_equal(sc.overlay, 0);
+    assert_int_equal(sc.cells, sc.chords + 1);
+    assert_int_equal(sq_param_verify(&Pc, SQ_PARAM_VERIFY_INTEGER, &err), SQ_OK);
+    assert_true(st.conformal_mean > 1 && 100 * st.conformal_mean < sc.conformal_mean);
+    printf("  eight: overlay %u faces, conformal mean %.3g; cells %u faces, %.3g\n", st.faces_out,
+           st.conformal_mean, sc.faces_out, sc.conformal_mean);
+    /* the overlay alone: the same map as the default's */
+    sq_param Po;
+    sq_param_init(&Po);
+    sq_param_stats so;
+    opt.interior = SQ_INTERIOR_OVERLAY;
+    s = sq_param_build(&M.m, M.val, &opt, &Po, &so, &err);
+    if (s) fail_msg("eight, overlay: %s", err.msg);
+    assert_true(so.overlay == 1 && Po.nf == P.nf && Po.nv == P.nv);
+    assert_memory_equal(Po.uv, P.uv, 2 * (size_t)P.nuv * sizeof(double));
+    sq_param_free(&Po);
+    sq_param_free(&Pc);
     sq_param_free(&P);
     unload(&M);
 }
@@ -128,6 +160,7 @@ static void test_cup_guided(void **state)
     sq_param_stats st;
     sq_param_options opt;
     sq_param_options_default(&opt);
+    opt.interior = SQ_INTERIOR_CELLS; /* what this test is about */
     opt.seed = 3;
     opt.refine = 0;
     sq_error err = {0};
@@ -176,6 +209,7 @@ static void test_threads(void **state)
     load(&M, "mpz/cup");
     sq_param_options opt;
     sq_param_options_default(&opt);
+    opt.interior = SQ_INTERIOR_CELLS; /* what this test is about */
     opt.seed = 2, opt.attempts = 3, opt.refine = 0;
     sq_param P1, P;
     sq_param_init(&P1);
@@ -227,6 +261,7 @@ static void test_all_models_compatible(void **state)
         sq_param_stats st;
         sq_param_options opt;
         sq_param_options_default(&opt);
+        opt.interior = SQ_INTERIOR_CELLS;
         opt.allow_flips = 1;
         sq_error err = {0};
         sq_status s = sq_param_build(&M.m, M.val, &opt, &P, &st, &err);
@@ -280,6 +315,7 @@ static void test_refine(void **state)
     sq_param_stats st0, st;
     sq_param_options opt;
     sq_param_options_default(&opt);
+    opt.interior = SQ_INTERIOR_CELLS; /* what this test is about */
     assert_int_equal(opt.refine, SQ_PARAM_REFINE);
     opt.refine = 0;
     sq_error err = {0};
@@ -314,6 +350,7 @@ static void test_bad_cells(void **state)
     sq_param_stats st;
     sq_param_options opt;
     sq_param_options_default(&opt);
+    opt.interior = SQ_INTERIOR_CELLS; /* what this test is about */
     opt.seed = 8;
     opt.refine = 0; /* the flips as Tutte's map leaves them */
     opt.allow_flips = 1;
