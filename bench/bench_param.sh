@@ -3,7 +3,8 @@
 # seed's Table-1 models mpz/block, fertility_tri, genus3, helmet, holes3 and
 # cid/elephant first, then the other models with cones; mpz/twirl is left
 # out: its valence-1 cone is refused by design). Prints a markdown table:
-# result, attempts, time per step (of the successful attempt) and wall time
+# result (and the interior map kept: cells or overlay), attempts, mean
+# conformal ratio of the map, time per step (of the successful attempt) and wall time
 # in total (median of N runs), peak RSS,
 # faces in and out, quads of the domain, beside the seed's Table 1. Default
 # options (up to 16 attempts with the next cut-graph seed, guidance auto);
@@ -57,9 +58,9 @@ def run(mesh, cfile):
         j = {"ok": False, "error": {"message": open(tmp + "/err.txt").read().strip()}}
     return j, wall, ru.ru_maxrss / 1024.0
 
-print("| model | genus | cones | result | attempts | faces in | faces out | Steiner | quads (init + pad) | "
+print("| model | genus | cones | result (interior map) | attempts | faces in | faces out | Steiner | conformal mean | quads (init + pad) | "
       + " | ".join(steps) + " | total (s) | peak RSS (MB) | seed Table 1: init + pad, time |")
-print("|---|---:|---:|---|---:|---:|---:|---:|---|" + "---:|" * len(steps) + "---:|---:|---|")
+print("|---|---:|---:|---|---:|---:|---:|---:|---:|---|" + "---:|" * len(steps) + "---:|---:|---|")
 for path, cones in models:
     mesh = shared + "/data/" + path
     cfile = mesh.rsplit("/", 1)[0] + "/" + cones
@@ -77,14 +78,15 @@ for path, cones in models:
         la = j.get("last_attempt", {})
         quads = "%d + %d" % (la["quads_before_padding"], la["quads_added_by_padding"]) if la else ""
         cells = ([path, str(la.get("genus", "")), str(la.get("cones", "")), "FAIL: " + why,
-                  str(la.get("attempts", ""))] + [""] * 3 + [quads] + [""] * len(steps)
+                  str(la.get("attempts", ""))] + [""] * 4 + [quads] + [""] * len(steps)
                  + ["%.2f" % wall, "%.0f" % rss, ref])
         print("| " + " | ".join(cells) + " |")
         continue
     med = lambda key: statistics.median(r[0]["time_s"][key] for r in runs)
-    print("| %s | %d | %d | PASS | %d (seed %d) | %d | %d | %d | %d + %d | %s | %.2f | %.0f | %s |" % (
-        path, j["genus"], j["cones"], j["attempts"], j["seed_used"], j["faces_in"], j["faces_out"],
-        j["steiner"], j["quads_before_padding"], j["quads_added_by_padding"],
+    print("| %s | %d | %d | PASS (%s) | %d (seed %d) | %d | %d | %d | %.3g | %d + %d | %s | %.2f | %.0f | %s |" % (
+        path, j["genus"], j["cones"], j["interior"], j["attempts"], j["seed_used"], j["faces_in"],
+        j["faces_out"], j["steiner"], j["distortion"]["conformal_mean"],
+        j["quads_before_padding"], j["quads_added_by_padding"],
         " | ".join("%.3f" % med(k) for k in steps), wall, rss, ref))
 PY
 echo
