@@ -42,7 +42,7 @@ for line in open(shared + "/data/MANIFEST.tsv"):
         continue
     models.append((f[0], f[9]))
 models.sort(key=lambda m: (m[0] not in table1, m[0]))
-steps = ["cut", "domain", "omega", "tree", "boundary", "cells", "tutte", "check"]
+steps = ["cut", "domain", "omega", "tree", "boundary", "cells", "tutte", "check", "overlay"]
 
 def run(mesh, cfile):
     """one `param` run with the default options; (json or None, wall s, peak RSS MB)"""

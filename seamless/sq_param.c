@@ -2793,7 +2793,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     for (uint32_t h = 0; h < c.O->cut.nh; h++) c.o2m[h] = SQ_NONE;
     st = boundary_map(&c);
     if (st) goto done;
-    double t2 = sq_now(), t_round = t2, t3 = t2, t4; /* t_round: the last round's start */
+    double t2 = sq_now(), t_round = t2, t3 = t2, t4, t_overlay = 0; /* t_round: the last round's start */
     if (opt->interior == SQ_INTERIOR_OVERLAY) { /* step 7' instead of 6-7c */
         progress(&c, "disk maps", 0.55);
         stats->overlay = 1;
@@ -2850,8 +2850,10 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     progress(&c, "check", 0.9);
     st = assemble(&c, v_uv, valence, out, stats);
     if (st) goto done;
+    double t_ov = sq_now();
     if (then_overlay) st = overlay_after_cells(&c, &saved, valence, out, stats);
     if (st) goto done;
+    if (then_overlay) t_overlay = sq_now() - t_ov;
 finish:
     out->domain = c.D, out->tree = c.T, out->omega = c.O;
     c.D = NULL, c.T = NULL, c.O = NULL;
@@ -2860,7 +2862,10 @@ finish:
     stats->t_boundary = t2 - t1;
     stats->t_cells = t3 - t_round;
     stats->t_tutte = t4 - t3;
-    stats->t_check = t5 - t4;
+    stats->t_check = t5 - t4 - t_overlay;
+    stats->t_overlay = t_overlay;
+    if (opt->interior == SQ_INTERIOR_OVERLAY) /* step 7' alone: no Tutte of cells */
+        stats->t_overlay = stats->t_tutte, stats->t_tutte = 0;
     stats->t_total = t5 - t_start;
     progress(&c, "done", 1.0);
 done:

@@ -148,6 +148,7 @@ typedef struct sq_param_stats {
     int overlay;                            /* 1: interior map by overlay     */
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
+    double t_overlay; /* step 7' (after the cells by default; kept or not) */
 } sq_param_stats;
 
 /* The result: a triangle mesh (input vertices first) with UVs per corner.
