@@ -2718,6 +2718,10 @@ static sq_status overlay_after_cells(ctx *c, const before_cells *saved, const in
     progress(c, "overlay (after the cells)", 0.9);
     sq_status st = before_cells_restore(c, saved);
     if (st == SQ_OK) st = overlay_map(c, valence, &P, &s);
+    /* the independent check too, before it replaces a map that passed:
+     * a failure here falls back to the cells' map instead of ending the
+     * run (the overlay is bijective in exact arithmetic; its UVs are not) */
+    if (st == SQ_OK) st = sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &e) ? SQ_ERR_SOLVER : SQ_OK;
     c->err = keep;
     if (st == SQ_OK) {
         sq_param_free(out);
