@@ -2223,11 +2223,10 @@ static int pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin)
     return r;
 }
 
-/* Mean-value Tutte map onto the disk of one mesh's interior vertices
- * [first, first + n) given as halfedges (3 nf, triangles tri with twins):
- * every vertex at the weighted mean of its neighbours, the others fixed at
- * xy. p3: 3 D positions per vertex id for the weights (NULL entries not
- * read for fixed vertices beyond their use as neighbours). */
+/* Tutte's map of one mesh (nf triangles tri, twins twin) onto the disk:
+ * its interior vertices [first, first + n) at the mean-value-weighted mean
+ * of their neighbours (one UMFPACK solve), the other vertices fixed at
+ * their xy. p3: a 3D position per vertex id, for the weights. */
 static sq_status disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *twin, uint32_t first,
                             uint32_t n, const double *p3, double *xy, sq_error *err)
 {
