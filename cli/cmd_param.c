@@ -292,8 +292,13 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
     printf("domain         %llu quads before padding + %llu padding = %llu\n",
            (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
            (unsigned long long)(s->quads_unpadded + s->quads_added));
-    printf("cone tree      %u edges in %u segments; Omega cut into %u rectangles by %u chords\n",
-           s->tree_edges, s->tree_segments, s->cells, s->chords);
+    printf("cone tree      %u edges in %u segments\n", s->tree_edges, s->tree_segments);
+    if (s->overlay)
+        printf("interior map   overlay: the cut surface and Omega on one disk, their common "
+               "refinement (step 7')\n");
+    else
+        printf("interior map   cells: Omega cut into %u rectangles by %u chords, Tutte per cell\n",
+               s->cells, s->chords);
     if (s->rounds)
         printf("refinement     %u rounds: %u cells with bad triangles halved (step 7c)\n", s->rounds,
                s->cells_refined);
