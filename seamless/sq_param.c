@@ -2312,52 +2312,35 @@ static uint32_t layer_sizes(uint32_t n, uint32_t sizes[41])
     return L;
 }
 
-/* The triangle (c, p0, p1) of a unit square of Omega (c its centre, p0 p1
- * a boundary edge) whose side p0 p1 holds the n surface boundary points
- * x (in order), triangulated in graded layers instead of a fan from c:
- * a fan's long thin triangles from c to every boundary point would each
- * cross every layer of the surface's triangles near the boundary in the
- * disk (nearly all the crossings of the overlay). Layer l lies at height
- * y_l = 0.45 2^(l - L) above the edge (local coordinates: p0 = (0, 0),
- * p1 = (1, 0), c = (1/2, 1/2)); a point at fraction t of the edge sits at
- * x = y + t (1 - 2 y), inside the triangle. Between two layers (each a
- * chain p0, points, p1) the strip is zipped in order of x: every triangle
- * has a base on one layer and its apex on the other, so it is positively
- * oriented; the two at p0 and p1 are too, because both layers keep the
- * first and last point (same t, higher layer steeper). The top layer is
- * fanned from c. New points get ids from *next (UVs into uv). */
+/* generalized graded layers (experiment) */
 static int boundary_layers(tri_list *L, uint32_t n, uint32_t *x, double *t, uint32_t c, uint32_t p0,
                            uint32_t p1, double *uv, uint32_t *next)
 {
     const double *P0 = uv + 2 * (size_t)p0, *P1 = uv + 2 * (size_t)p1, *C = uv + 2 * (size_t)c;
     double d[2] = {P1[0] - P0[0], P1[1] - P0[1]};
-    double nrm[2] = {2 * (C[0] - 0.5 * (P0[0] + P1[0])), 2 * (C[1] - 0.5 * (P0[1] + P1[1]))};
     double dd = d[0] * d[0] + d[1] * d[1];
+    double ct = ((C[0] - P0[0]) * d[0] + (C[1] - P0[1]) * d[1]) / dd;
     for (uint32_t k = 0; k < n; k++) {
         const double *u = uv + 2 * (size_t)x[k];
         t[k] = ((u[0] - P0[0]) * d[0] + (u[1] - P0[1]) * d[1]) / dd;
     }
     uint32_t sizes[41], nl = layer_sizes(n, sizes);
     uint32_t *lo = x, *up = x + n + 32;
-    double *tlo = t, *tup = t + n + 32, ylo = 0;
+    double *tlo = t, *tup = t + n + 32, slo = 0;
     for (uint32_t l = 1; l <= nl; l++) {
-        double y = 0.45 * ldexp(1.0, (int)l - (int)nl);
+        double sl = 0.9 * ldexp(1.0, (int)l - (int)nl);
         uint32_t m = 0;
         for (uint32_t k = 0; k < n; k++) {
             if (k % 2 && k != n - 1) continue;
             uint32_t id = (*next)++;
-            double xx = y + tlo[k] * (1 - 2 * y);
-            uv[2 * (size_t)id] = P0[0] + xx * d[0] + y * nrm[0];
-            uv[2 * (size_t)id + 1] = P0[1] + xx * d[1] + y * nrm[1];
+            for (int q = 0; q < 2; q++) uv[2 * (size_t)id + q] = (1 - sl) * (P0[q] + tlo[k] * d[q]) + sl * C[q];
             up[m] = id, tup[m] = tlo[k], m++;
         }
-        assert(m == sizes[l]);
-        /* zip lower (n) and upper (m) chains, both from p0 to p1 */
         if (tri_add(L, p0, lo[0], up[0])) return -1;
         uint32_t i = 0, j = 0;
         while (i + 1 < n || j + 1 < m) {
-            double xl = i + 1 < n ? ylo + tlo[i + 1] * (1 - 2 * ylo) : 2;
-            double xu = j + 1 < m ? y + tup[j + 1] * (1 - 2 * y) : 2;
+            double xl = i + 1 < n ? (1 - slo) * tlo[i + 1] + slo * ct : 2;
+            double xu = j + 1 < m ? (1 - sl) * tup[j + 1] + sl * ct : 2;
             if (xl < xu) {
                 if (tri_add(L, lo[i], lo[i + 1], up[j])) return -1;
                 i++;
@@ -2367,14 +2350,141 @@ static int boundary_layers(tri_list *L, uint32_t n, uint32_t *x, double *t, uint
             }
         }
         if (tri_add(L, lo[n - 1], p1, up[m - 1])) return -1;
-        /* the upper layer becomes the lower one */
         uint32_t *ti = lo;
         lo = up, up = ti;
         double *td = tlo;
         tlo = tup, tup = td;
-        n = m, ylo = y;
+        n = m, slo = sl;
     }
     return tri_fan(L, c, p0, n, lo, p1);
+}
+
+static int cell_side(const sq_metapolygon *W, const uint8_t *he_chord, uint32_t h)
+{
+    return W->he_face[W->he_twin[h]] == SQ_NONE || !he_chord || he_chord[h];
+}
+
+static sq_status omega_triangulation(const sq_omega *O, const sq_omega_cells *C, uint32_t nbl, uint32_t na,
+                                     const uint32_t *wb, const uint32_t *oseq, const uint32_t *bstart,
+                                     const double *buv0, uint32_t *nv_out, double **uv_out, tri_list *bt,
+                                     sq_error *err)
+{
+    const sq_metapolygon *W = &O->cut;
+    const uint8_t *chord = C ? C->he_chord : NULL;
+    uint32_t ncells = C ? C->ncells : W->nf, nb = W->nbnd;
+    uint32_t *wid = malloc((size_t)W->nv * sizeof *wid), *opos = malloc((size_t)W->nh * sizeof *opos);
+    uint32_t *mid = malloc((size_t)W->nh * sizeof *mid), *cstart = malloc((size_t)ncells * sizeof *cstart);
+    uint32_t *ring = malloc(((size_t)W->nh + 1) * sizeof *ring);
+    uint32_t *pts = malloc(2 * ((size_t)nbl + W->nh + 64) * sizeof *pts);
+    double *pt = malloc(2 * ((size_t)nbl + W->nh + 64) * sizeof *pt), *uv = NULL;
+    sq_status st = SQ_OK;
+    uint32_t nv = na;
+    if (!wid || !opos || !mid || !cstart || !ring || !pts || !pt) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t h = 0; h < W->nh; h++) opos[h] = mid[h] = SQ_NONE;
+    for (uint32_t i = 0; i < nb; i++) opos[oseq[i]] = i;
+    for (uint32_t k = 0; k < ncells; k++) cstart[k] = SQ_NONE;
+    for (uint32_t h = 0; h < W->nh; h++) {
+        uint32_t f = W->he_face[h];
+        if (f == SQ_NONE || !cell_side(W, chord, h)) continue;
+        uint32_t k = C ? C->f_cell[f] : f;
+        if (cstart[k] == SQ_NONE) cstart[k] = h;
+    }
+    memcpy(wid, wb, (size_t)W->nv * sizeof *wid);
+    for (uint32_t h = 0; h < W->nh; h++)
+        if (W->he_face[h] != SQ_NONE && cell_side(W, chord, h) && wid[W->he_vert[h]] == SQ_NONE)
+            wid[W->he_vert[h]] = nv++;
+    uint32_t centre0 = nv;
+    nv += ncells;
+    for (uint32_t h = 0; h < W->nh; h++) {
+        uint32_t t = W->he_twin[h];
+        if (W->he_face[h] == SQ_NONE || W->he_face[t] == SQ_NONE || t < h || !cell_side(W, chord, h)) continue;
+        if (wid[W->he_vert[h]] < nbl && wid[W->he_vert[t]] < nbl) mid[h] = mid[t] = nv++;
+    }
+    uint32_t layer0 = nv, next = 0;
+    for (int pass = 0; pass < 2 && st == SQ_OK; pass++) {
+        if (pass == 1) {
+            uv = malloc(2 * (size_t)nv * sizeof *uv);
+            if (!uv) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                break;
+            }
+            memcpy(uv, buv0, 2 * (size_t)nbl * sizeof *uv);
+            for (uint32_t v = 0; v < W->nv; v++)
+                if (wid[v] != SQ_NONE && wid[v] >= na)
+                    uv[2 * (size_t)wid[v]] = (double)O->xy[2 * v], uv[2 * (size_t)wid[v] + 1] = (double)O->xy[2 * v + 1];
+            for (uint32_t h = 0; h < W->nh; h++)
+                if (mid[h] != SQ_NONE && h < W->he_twin[h]) {
+                    uint32_t a = W->he_vert[h], b = W->he_vert[W->he_twin[h]];
+                    uv[2 * (size_t)mid[h]] = 0.5 * (double)(O->xy[2 * a] + O->xy[2 * b]);
+                    uv[2 * (size_t)mid[h] + 1] = 0.5 * (double)(O->xy[2 * a + 1] + O->xy[2 * b + 1]);
+                }
+            next = layer0;
+        }
+        for (uint32_t k = 0; k < ncells && st == SQ_OK; k++) {
+            uint32_t nr = 0, h = cstart[k];
+            if (h == SQ_NONE) {
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: cell %u has no side", k);
+                break;
+            }
+            do {
+                ring[nr++] = h;
+                uint32_t g = W->he_next[h];
+                while (!cell_side(W, chord, g)) g = W->he_next[W->he_twin[g]];
+                h = g;
+            } while (h != cstart[k] && nr <= W->nh);
+#define DIR(e, q) (O->xy[2 * W->he_vert[W->he_next[e]] + (q)] - O->xy[2 * W->he_vert[e] + (q)])
+            uint32_t r0 = 0;
+            while (r0 < nr && DIR(ring[r0], 0) == DIR(ring[(r0 + nr - 1) % nr], 0) &&
+                   DIR(ring[r0], 1) == DIR(ring[(r0 + nr - 1) % nr], 1))
+                r0++;
+            if (h != cstart[k] || r0 == nr) {
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: cell %u is not a rectangle", k);
+                break;
+            }
+            int64_t bx0 = INT64_MAX, by0 = INT64_MAX, bx1 = INT64_MIN, by1 = INT64_MIN;
+            for (uint32_t q = 0; q < nr; q++) {
+                int64_t x = O->xy[2 * W->he_vert[ring[q]]], y = O->xy[2 * W->he_vert[ring[q]] + 1];
+                bx0 = x < bx0 ? x : bx0, bx1 = x > bx1 ? x : bx1, by0 = y < by0 ? y : by0, by1 = y > by1 ? y : by1;
+            }
+            uint32_t cid = centre0 + k;
+            if (pass == 1) uv[2 * (size_t)cid] = 0.5 * (double)(bx0 + bx1), uv[2 * (size_t)cid + 1] = 0.5 * (double)(by0 + by1);
+            for (uint32_t q = 0; q < nr && st == SQ_OK;) {
+                uint32_t e0 = ring[(r0 + q) % nr], np = 0, e = e0, q1 = q;
+                for (;;) {
+                    if (e != e0) pts[np++] = wid[W->he_vert[e]];
+                    if (opos[e] != SQ_NONE) {
+                        uint32_t i = opos[e], m1 = bstart[(i + 1) % nb];
+                        for (uint32_t p = (bstart[i] + 1) % nbl; p != m1; p = (p + 1) % nbl) pts[np++] = p;
+                    } else if (mid[e] != SQ_NONE) {
+                        pts[np++] = mid[e];
+                    }
+                    q1++;
+                    if (q1 == nr) break;
+                    uint32_t en = ring[(r0 + q1) % nr];
+                    if (DIR(en, 0) != DIR(e, 0) || DIR(en, 1) != DIR(e, 1)) break;
+                    e = en;
+                }
+                uint32_t p0 = wid[W->he_vert[e0]], p1 = wid[W->he_vert[W->he_next[e]]];
+                if (pass == 0) {
+                    uint32_t sizes[41], L = np >= 3 ? layer_sizes(np, sizes) : 0;
+                    for (uint32_t l = 1; l <= L; l++) nv += sizes[l];
+                } else if (np >= 3 ? boundary_layers(bt, np, pts, pt, cid, p0, p1, uv, &next)
+                                   : tri_fan(bt, cid, p0, np, pts, p1)) {
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                }
+                q = q1;
+            }
+#undef DIR
+        }
+    }
+done:
+    free(wid), free(opos), free(mid), free(cstart), free(ring), free(pts), free(pt);
+    if (st) free(uv), uv = NULL;
+    *nv_out = nv, *uv_out = uv;
+    return st;
 }
 
 /* The interior map by overlay (sq_overlay.h; seamless-notes 5): the cut
@@ -2385,7 +2495,8 @@ static int boundary_layers(tri_list *L, uint32_t n, uint32_t *x, double *t, uint
  * surface whose every triangle lies in one triangle of B, whose affine
  * map gives its UVs. Bijective in exact arithmetic for any Omega, convex or
  * not, immersed or not; no chords, no cells. Fills P. */
-static sq_status overlay_map(ctx *c, const int32_t *valence, sq_param *P, sq_param_stats *stats)
+static sq_status overlay_map_once(ctx *c, const int32_t *valence, int coarse, sq_param *P,
+                                  sq_param_stats *stats)
 {
     sq_tsurf *S = &c->S;
     const sq_omega *O = c->O;
@@ -2438,8 +2549,6 @@ static sq_status overlay_map(ctx *c, const int32_t *valence, sq_param *P, sq_par
     /* A: the surface; interior vertices after the boundary */
     uint32_t na = nbl;
     for (uint32_t v = 0; v < S->nv; v++) aid[v] = S->v_ncut[v] ? SQ_NONE : na++;
-    /* B: Omega's vertices, the squares' centres, the dividing edges' midpoints */
-    uint32_t nv = na;
     for (uint32_t v = 0; v < W->nv; v++) wid[v] = SQ_NONE;
     for (uint32_t i = 0; i < nb; i++) {
         uint32_t f = oseq[i], v = W->he_vert[f], m = c->o2m[f];
@@ -2448,56 +2557,38 @@ static sq_status overlay_map(ctx *c, const int32_t *valence, sq_param *P, sq_par
             goto done;
         }
         wid[v] = bidx[m];
+        mid[i] = bidx[m];
     }
-    for (uint32_t v = 0; v < W->nv; v++)
-        if (wid[v] == SQ_NONE) wid[v] = nv++;
-    uint32_t centre0 = nv;
-    nv += W->nf;
-    for (uint32_t h = 0; h < W->nh; h++) {
-        uint32_t t = W->he_twin[h];
-        if (W->he_face[h] == SQ_NONE || W->he_face[t] == SQ_NONE || t < h) continue;
-        if (wid[W->he_vert[h]] < nbl && wid[W->he_vert[t]] < nbl) mid[h] = mid[t] = nv++;
-    }
-    /* graded layers above Omega's boundary edges (boundary_layers) */
-    uint32_t layer0 = nv;
-    for (uint32_t i = 0; i < nb; i++) {
-        uint32_t f = oseq[i], sizes[41];
-        uint32_t m0 = bidx[c->o2m[f]], m1 = bidx[c->o2m[oseq[(i + 1) % nb]]];
-        uint32_t L = layer_sizes((m1 + nbl - m0 - 1) % nbl, sizes);
-        for (uint32_t l = 1; l <= L; l++) nv += sizes[l];
-    }
-    a2s = malloc((size_t)na * sizeof *a2s);
-    xy = malloc(2 * (size_t)nv * sizeof *xy);
-    p3 = calloc(3 * (size_t)nv, sizeof *p3);
-    buv = malloc(2 * (size_t)nv * sizeof *buv);
-    if (!a2s || !xy || !p3 || !buv) {
+    double *buv0 = malloc(2 * (size_t)nbl * sizeof *buv0);
+    if (!buv0) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
     for (uint32_t i = 0; i < nbl; i++) {
-        a2s[i] = S->vert[mseq[i]];
         const double *u = c->uv + 2 * (size_t)c->sec_uv[mseq[i]];
-        buv[2 * i] = u[0], buv[2 * i + 1] = u[1];
+        buv0[2 * i] = u[0], buv0[2 * i + 1] = u[1];
     }
+    sq_omega_cells Cc;
+    sq_omega_cells_init(&Cc);
+    if (coarse) st = sq_omega_cells_build(O, 0, NULL, &Cc, err);
+    uint32_t nv = 0;
+    tri_list bt = {0};
+    if (st == SQ_OK) st = omega_triangulation(O, coarse ? &Cc : NULL, nbl, na, wid, oseq, mid, buv0, &nv, &buv, &bt, err);
+    sq_omega_cells_free(&Cc);
+    free(buv0);
+    btri = bt.t;
+    uint32_t nbt = bt.n;
+    if (st) goto done;
+    a2s = malloc((size_t)na * sizeof *a2s);
+    xy = malloc(2 * (size_t)nv * sizeof *xy);
+    p3 = calloc(3 * (size_t)nv, sizeof *p3);
+    if (!a2s || !xy || !p3) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t i = 0; i < nbl; i++) a2s[i] = S->vert[mseq[i]];
     for (uint32_t v = 0; v < S->nv; v++)
         if (aid[v] != SQ_NONE) a2s[aid[v]] = v;
-    for (uint32_t v = 0; v < W->nv; v++)
-        if (wid[v] >= na) buv[2 * wid[v]] = (double)O->xy[2 * v], buv[2 * wid[v] + 1] = (double)O->xy[2 * v + 1];
-    for (uint32_t f = 0; f < W->nf; f++) {
-        double u = 0, w = 0;
-        uint32_t h = W->f_he[f], k = 0;
-        do {
-            u += (double)O->xy[2 * W->he_vert[h]], w += (double)O->xy[2 * W->he_vert[h] + 1], k++;
-            h = W->he_next[h];
-        } while (h != W->f_he[f]);
-        buv[2 * (centre0 + f)] = u / k, buv[2 * (centre0 + f) + 1] = w / k;
-    }
-    for (uint32_t h = 0; h < W->nh; h++)
-        if (mid[h] != SQ_NONE && h < W->he_twin[h]) {
-            uint32_t a = W->he_vert[h], b = W->he_vert[W->he_twin[h]];
-            buv[2 * mid[h]] = 0.5 * (double)(O->xy[2 * a] + O->xy[2 * b]);
-            buv[2 * mid[h] + 1] = 0.5 * (double)(O->xy[2 * a + 1] + O->xy[2 * b + 1]);
-        }
     /* the boundary on the unit circle by Omega's arc length */
     {
         double L = 0;
@@ -2548,39 +2639,6 @@ static sq_status overlay_map(ctx *c, const int32_t *valence, sq_param *P, sq_par
     for (uint32_t i = 0; i < na; i++) memcpy(p3 + 3 * (size_t)i, S->pos + 3 * (size_t)a2s[i], 3 * sizeof *p3);
     st = disk_tutte(S->nf, atri, atw, nbl, na - nbl, p3, xy, err);
     if (st) goto done;
-    /* B's triangles: each face of Omega fanned from its centre, except
-     * above a boundary edge holding three or more surface points: there
-     * graded layers (boundary_layers) */
-    tri_list bt = {0};
-    ring = malloc(4 * ((size_t)nbl + 64) * sizeof *ring);
-    double *rt = malloc(2 * ((size_t)nbl + 64) * sizeof *rt);
-    if (!ring || !rt) {
-        free(rt);
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    uint32_t next_id = layer0;
-    for (uint32_t f = 0; f < W->nf && st == SQ_OK; f++) {
-        uint32_t h = W->f_he[f], cid = centre0 + f;
-        do {
-            uint32_t p0 = wid[W->he_vert[h]], p1 = wid[W->he_vert[W->he_next[h]]], nr = 0;
-            if (W->he_face[W->he_twin[h]] == SQ_NONE) {
-                uint32_t i = opos[h], m0 = bidx[c->o2m[h]], m1 = bidx[c->o2m[oseq[(i + 1) % nb]]];
-                for (uint32_t q = (m0 + 1) % nbl; q != m1; q = (q + 1) % nbl) ring[nr++] = q;
-            } else if (mid[h] != SQ_NONE) {
-                ring[nr++] = mid[h];
-            }
-            int r = nr >= 3 ? boundary_layers(&bt, nr, ring, rt, cid, p0, p1, buv, &next_id)
-                            : tri_fan(&bt, cid, p0, nr, ring, p1);
-            if (r) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            h = W->he_next[h];
-        } while (h != W->f_he[f] && st == SQ_OK);
-    }
-    free(rt);
-    btri = bt.t;
-    uint32_t nbt = bt.n;
-    if (st) goto done;
-    assert(next_id == nv);
     for (uint32_t g = 0; g < nbt; g++)
         if (sq_orient2d(buv + 2 * (size_t)btri[3 * g], buv + 2 * (size_t)btri[3 * g + 1], buv + 2 * (size_t)btri[3 * g + 2]) <= 0) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangle %u is not positively oriented", g);
@@ -2696,6 +2754,19 @@ done:
     free(a2s), free(btri), free(btw), free(atri), free(atw), free(ring), free(ptw);
     free(xy), free(p3), free(buv);
     return st;
+}
+
+/* Step 7' with Omega triangulated in its unit squares, and where that
+ * fails (over the budget, mostly), in the rectangles of its chords: fewer
+ * edges for the surface to cross where Omega is large against the
+ * surface (femur, rocker_arm, elk with guidance), more where it is not
+ * (fandisk, eight, cup, helmet), hence second (docs/param.md, step 7'). */
+static sq_status overlay_map(ctx *c, const int32_t *valence, sq_param *P, sq_param_stats *stats)
+{
+    sq_status st = overlay_map_once(c, valence, 0, P, stats);
+    if (st != SQ_ERR_SOLVER) return st;
+    sq_param_free(P);
+    return overlay_map_once(c, valence, 1, P, stats);
 }
 
 /* SQ_INTERIOR_AUTO: the cells have passed; the overlay (step 7') on the
