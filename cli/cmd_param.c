@@ -106,7 +106,9 @@ static void help(FILE *f)
             "                      from the disk centre outwards and replicates it in the\n"
             "                      domain (seed 9.4); domain takes the domain's own\n"
             "                      shortest tree (passes less often, less distortion when\n"
-            "                      it does); alternate tries both on each cut-graph seed\n"
+            "                      it does); alternate tries both on each cut-graph seed;\n"
+            "                      pair (experimental) grows both trees at once as one\n"
+            "                      plane tree, Q refined where it has no room\n"
             "  --interior MODE     the interior map: cells cuts Omega into rectangles by\n"
             "                      chords replayed on the surface and maps each cell by\n"
             "                      Tutte (with --refine rounds); overlay maps the cut\n"
@@ -431,8 +433,9 @@ int sq_cmd_param(int argc, char **argv)
             if (!strcmp(arg, "alternate")) tree = SQ_TREE_ALTERNATE;
             else if (!strcmp(arg, "surface")) tree = SQ_TREE_SURFACE;
             else if (!strcmp(arg, "domain")) tree = SQ_TREE_DOMAIN;
+            else if (!strcmp(arg, "pair")) tree = SQ_TREE_PAIR;
             else {
-                fprintf(stderr, "seamquad param: --tree takes alternate, surface or domain, got '%s'\n", arg);
+                fprintf(stderr, "seamquad param: --tree takes alternate, surface, domain or pair, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--interior") && has) {

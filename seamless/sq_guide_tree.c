@@ -17,6 +17,7 @@
 
 #include "sq_cut_internal.h"
 #include "sq_guide.h"
+#include "sq_guide_internal.h"
 #include "sq_omega.h"
 
 /* ---- the surface tree ------------------------------------------------- */
@@ -45,6 +46,44 @@ static double edge_len(const sq_mesh *m, uint32_t a, uint32_t b)
 {
     const double *p = m->pos + 3 * a, *q = m->pos + 3 * b;
     return sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+}
+
+uint32_t sq_guide_surface_path(const sq_mesh *m, const uint8_t *blocked, const uint32_t *owner,
+                               sq_guide_end_fn end_ok, void *user, uint32_t s, double *dist,
+                               uint32_t *par, uint32_t *touched, uint32_t *nt, sq_cut_heap *heap,
+                               int *nomem)
+{
+    dist[s] = 0, par[s] = SQ_NONE, touched[(*nt)++] = s;
+    heap->n = 0;
+    if (!sq_cut_heap_push(heap, 0, s)) {
+        *nomem = 1;
+        return SQ_NONE;
+    }
+    double d;
+    uint32_t v;
+    while (sq_cut_heap_pop(heap, &d, &v)) {
+        if (d > dist[v]) continue;
+        if (v != s && owner[v] != SQ_NONE) return v;
+        if (v != s && blocked[v]) continue;
+        uint32_t h0 = m->v_he[v], h = h0;
+        do {
+            uint32_t w = m->he_vert[m->he_next[h]];
+            int end = owner[w] != SQ_NONE && (!end_ok || end_ok(user, w, v));
+            if (end || (owner[w] == SQ_NONE && !blocked[w])) {
+                double nd = d + edge_len(m, v, w);
+                if (nd < dist[w]) {
+                    if (dist[w] == INFINITY) touched[(*nt)++] = w;
+                    dist[w] = nd, par[w] = v;
+                    if (!sq_cut_heap_push(heap, nd, w)) {
+                        *nomem = 1;
+                        return SQ_NONE;
+                    }
+                }
+            }
+            h = m->he_next[m->he_twin[h]];
+        } while (h != h0);
+    }
+    return SQ_NONE;
 }
 
 sq_status sq_guide_surface_tree(const sq_mesh *m, const sq_cut_graph *G, uint32_t n, const uint32_t *cone,
@@ -79,44 +118,14 @@ sq_status sq_guide_surface_tree(const sq_mesh *m, const sq_cut_graph *G, uint32_
     for (uint32_t j = 1; j < n && st == SQ_OK; j++) {
         /* Dijkstra from cone j through free vertices to the first tree
          * vertex; tree vertices are ends, never passed through */
-        uint32_t nt = 0, s = cone[j], hit = SQ_NONE;
+        uint32_t nt = 0, s = cone[j];
         if (owner[s] != SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "surface tree: cone %u already on the tree", s);
             break;
         }
-        dist[s] = 0, par[s] = SQ_NONE, touched[nt++] = s;
-        heap.n = 0;
-        if (!sq_cut_heap_push(&heap, 0, s)) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            break;
-        }
-        double d;
-        uint32_t v;
-        while (sq_cut_heap_pop(&heap, &d, &v)) {
-            if (d > dist[v]) continue;
-            if (owner[v] != SQ_NONE) {
-                hit = v;
-                break;
-            }
-            if (v != s && blocked[v]) continue;
-            uint32_t h0 = m->v_he[v], h = h0;
-            do {
-                uint32_t w = m->he_vert[m->he_next[h]];
-                if (owner[w] != SQ_NONE || !blocked[w]) {
-                    double nd = d + edge_len(m, v, w);
-                    if (nd < dist[w]) {
-                        if (dist[w] == INFINITY) touched[nt++] = w;
-                        dist[w] = nd, par[w] = v;
-                        if (!sq_cut_heap_push(&heap, nd, w)) {
-                            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-                            break;
-                        }
-                    }
-                }
-                h = m->he_next[m->he_twin[h]];
-            } while (h != h0 && st == SQ_OK);
-            if (st) break;
-        }
+        int nomem = 0;
+        uint32_t hit = sq_guide_surface_path(m, blocked, owner, NULL, NULL, s, dist, par, touched, &nt, &heap, &nomem);
+        if (nomem) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         if (st == SQ_OK && hit == SQ_NONE) {
             /* walled in by the cut and other cones (the surface stage
              * splits edges there): no preference for this cone */

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+
 #include "sq_cones.h"
 #include "sq_cut_graph.h"
 #include "sq_domain.h"
@@ -84,6 +85,10 @@ typedef struct ctx {
     uint32_t root_surface; /* the surface tree's root vertex on the cut    */
     uint32_t root_step;    /* the step whose cone (nearest the circle) Q's */
                            /* root path starts from (SQ_NONE: not guided)  */
+    int tree_exact;      /* Q's tree is the surface tree's exact copy    */
+    uint32_t s_tree_root;/* ... whose forest root is then the root vertex */
+    uint32_t tree_refined; /* ... after that many 2 x 2 refinements of Q */
+                         /* (sq_guide_tree_pair)                         */
     uint32_t *q_branch;  /* Q->nv: seed 9.4 guided tree: the surface vertex */
                          /* where the surface tree branched for a regular  */
                          /* branch vertex of Q's tree; SQ_NONE elsewhere,  */
@@ -350,9 +355,35 @@ static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, const sq
 static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt);
 static sq_status step_q_vertices(ctx *c, uint32_t *qv);
 
+/* Q's root cost for the surface root path `root`: on the side of Q standing
+ * for root's side, the distance from the same fraction of it; `other`
+ * elsewhere. */
+static void fill_root_cost(const ctx *c, const sq_guide_root *root, double *cost, double other)
+{
+    const sq_metapolygon *Q = &c->D->quads;
+    for (uint32_t v = 0; v < Q->nv; v++) cost[v] = other;
+    if (root->side == SQ_NONE) return;
+    uint32_t qs_side = q_side_of_surface(c, root->side);
+    uint32_t ns = c->G.side_off[root->side + 1] - c->G.side_off[root->side];
+    double t_want = (1.0 - (double)root->index / (double)ns) * (double)c->D->side_len[qs_side];
+    uint32_t h = Q->v_he[c->D->corner_vert[qs_side]];
+    for (uint32_t t = 0; t < c->D->side_len[qs_side]; t++, h = Q->he_next[h])
+        if (t > 0) cost[Q->he_vert[h]] = fabs((double)t - t_want);
+}
+
+static sq_status root_cost(void *user, const sq_guide_root *root, double *cost)
+{
+    fill_root_cost(user, root, cost, INFINITY);
+    return SQ_OK;
+}
+
 /* Seed 9.4 (guided, genus >= 1): the cone tree chosen on the surface in
  * radial order (the steps' order) and replicated in Q. SQ_ERR_SOLVER when
  * either side is blocked: the caller then takes Q's own shortest tree. */
+enum { TREE_REFINE = 2, ROOT_TRIES = 3 };
+
+static void domain_replace(ctx *c, sq_domain *D);
+
 static sq_status guided_tree(ctx *c)
 {
     const sq_metapolygon *Q = &c->D->quads;
@@ -376,26 +407,90 @@ static sq_status guided_tree(ctx *c)
         double r = hypot(c->step_xy[2 * j], c->step_xy[2 * j + 1]);
         if (r > best) best = r, rs = j;
     }
-    if (st == SQ_OK)
+    /* SQ_TREE_PAIR: seed 9.4 on both disks at once, as one plane tree
+     * (sq_guide_tree_pair); where that fails, as SQ_TREE_SURFACE */
+    for (uint32_t j = 0; qs && qf && j < n1; j++) qs[j] = SQ_NONE, qf[j] = 0;
+    sq_domain *saved = c->D;
+    if (st == SQ_OK && c->opt->tree == SQ_TREE_PAIR) {
+        /* where Q's grid has no room for a path, the same at twice the
+         * resolution (up to TREE_REFINE times; Q's vertices keep their
+         * indices, so qv stays) */
+        sq_domain *cur = c->D;
+        for (uint32_t level = 0; st == SQ_OK && !c->tree_exact; level++) {
+            sq_guide_root pr = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
+            c->D = cur; /* root_cost reads the domain */
+            /* the root path from the cone nearest the circle, else from the
+             * next nearest (a cone in a pocket of the cut can be reached
+             * by no other path) */
+            uint8_t *tried = calloc(n1, 1);
+            if (!tried) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            for (uint32_t k = 0; st == SQ_OK && k < ROOT_TRIES && k < n; k++) {
+                uint32_t r = SQ_NONE;
+                double far = -1;
+                for (uint32_t j = 0; j < n; j++) {
+                    double d = hypot(c->step_xy[2 * j], c->step_xy[2 * j + 1]);
+                    if (!tried[j] && d > far) far = d, r = j;
+                }
+                tried[r] = 1;
+                pr = (sq_guide_root){r, SQ_NONE, SQ_NONE, SQ_NONE};
+                st = sq_guide_tree_pair(&cur->quads, qv, c->m, &c->G, c->step_vertex, n, r, root_cost, c,
+                                        c->s_tree_next, sv, qa, &pr, c->T, c->err);
+                if (st == SQ_OK) rs = r;
+                if (st != SQ_ERR_SOLVER) break;
+                st = SQ_OK + 0 * st;
+                if (k + 1 == ROOT_TRIES || k + 1 == n) st = SQ_ERR_SOLVER;
+            }
+            free(tried);
+            if (st == SQ_OK) {
+                c->tree_exact = 1;
+                c->root_surface = c->s_tree_root = pr.vertex;
+                c->tree_refined = level;
+                break;
+            }
+            if (st != SQ_ERR_SOLVER || level == TREE_REFINE) break;
+            st = SQ_OK;
+            sq_domain *next = calloc(1, sizeof *next);
+            if (!next) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            if (st == SQ_OK) st = sq_domain_refine2(cur, next, c->err);
+            if (cur != saved) {
+                sq_domain_free(cur);
+                free(cur);
+            }
+            cur = next;
+            if (st && next) {
+                sq_domain_free(next);
+                free(next);
+                cur = saved;
+            }
+        }
+        c->D = saved;
+        if (c->tree_exact && cur != saved) {
+            domain_replace(c, cur);
+            Q = &c->D->quads;
+            uint32_t *b = realloc(c->q_branch, ((size_t)Q->nv + 1) * sizeof *b);
+            if (!b) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+            else c->q_branch = b;
+        } else if (cur != saved) {
+            sq_domain_free(cur);
+            free(cur);
+        }
+        if (st == SQ_ERR_SOLVER) st = SQ_OK;
+    }
+    /* else the surface tree first, Q's following it near the same places */
+    if (st == SQ_OK && !c->tree_exact)
         st = sq_guide_surface_tree(c->m, &c->G, n, c->step_vertex, att, frac, side, sv, c->s_tree_next, c->err);
     /* the surface root path as the seed draws it (to the nearest side),
      * not attached: it tells Q where its root should be */
     sq_guide_root root = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
-    if (st == SQ_OK) st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, c->s_tree_next, NULL, &root, c->err);
-    if (st == SQ_OK && root.side != SQ_NONE) {
-        /* Q's root on the side of Q that the surface root's side stands
-         * for, near the same fraction of it */
-        uint32_t qs_side = q_side_of_surface(c, root.side);
-        uint32_t ns = c->G.side_off[root.side + 1] - c->G.side_off[root.side];
-        double t_want = (1.0 - (double)root.index / (double)ns) * (double)c->D->side_len[qs_side];
+    if (st == SQ_OK && !c->tree_exact)
+        st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, c->s_tree_next, NULL, &root, c->err);
+    if (st == SQ_OK && !c->tree_exact && root.side != SQ_NONE) {
         rcost = malloc(((size_t)Q->nv + 1) * sizeof *rcost);
         if (!rcost) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-        for (uint32_t v = 0; rcost && v < Q->nv; v++) rcost[v] = 1e6;
-        uint32_t h = Q->v_he[c->D->corner_vert[qs_side]];
-        for (uint32_t t = 0; rcost && t < c->D->side_len[qs_side]; t++, h = Q->he_next[h])
-            if (t > 0) rcost[Q->he_vert[h]] = fabs((double)t - t_want);
+        else fill_root_cost(c, &root, rcost, 1e6);
     }
-    if (st == SQ_OK) st = sq_cone_tree_guided(Q, n, qv, att, frac, side, rs, rcost, qa, qs, qf, c->T, c->err);
+    if (st == SQ_OK && !c->tree_exact)
+        st = sq_cone_tree_guided(Q, n, qv, att, frac, side, rs, rcost, qa, qs, qf, c->T, c->err);
     if (st == SQ_OK) c->root_step = rs;
     if (st == SQ_OK) {
         /* a regular branch vertex of Q's tree stands for the surface
@@ -532,7 +627,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     if (st_out) st_out->surface_tree = st == SQ_OK;
     if (st == SQ_ERR_SOLVER) st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
     if (st == SQ_OK) st = sq_omega_build(c->D, c->T, c->O, err);
-    if (st == SQ_OK && c->s_tree_next) st = guided_root(c);
+    if (st == SQ_OK && c->s_tree_next && !c->tree_exact) st = guided_root(c);
     if (st) goto done;
     double t3 = sq_now();
     if (st_out) {
@@ -987,7 +1082,7 @@ static int given_path(ctx *c, uint32_t sector, uint32_t target, uint32_t **path,
 {
     sq_tsurf *S = &c->S;
     const uint32_t *nx = c->s_tree_next;
-    uint32_t a = S->vert[sector], first = c->step_vertex[0], nv = c->m->nv;
+    uint32_t a = S->vert[sector], first = c->tree_exact ? c->s_tree_root : c->step_vertex[0], nv = c->m->nv;
     if (a >= nv || target >= nv || S->v_ncut[target]) return 0;
     if (nx[a] == SQ_NONE && a != first) return 0; /* not on the surface tree */
     if (nx[target] == SQ_NONE && target != first) return 0;

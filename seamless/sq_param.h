@@ -99,8 +99,13 @@ enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2 };
  *  SQ_TREE_DOMAIN: Q's shortest tree, the surface following it;
  *  SQ_TREE_ALTERNATE: attempts alternate the two on each cut-graph seed
  *    (attempt a: seed + a / 2, the surface tree first); fewer seeds for the
- *    same attempts (34 of 45). */
-enum { SQ_TREE_SURFACE = 0, SQ_TREE_DOMAIN = 1, SQ_TREE_ALTERNATE = 2 };
+ *    same attempts (34 of 45);
+ *  SQ_TREE_PAIR: both trees grown at once as one plane tree, every
+ *    surface path's end copied exactly in Q (refined 2 x 2 where its grid
+ *    has no room; sq_guide_tree_pair), so the surface tree needs no
+ *    Steiner vertex; where that fails, as SQ_TREE_SURFACE. Experimental:
+ *    it makes mpz/elk pass with the overlay (docs/param.md). */
+enum { SQ_TREE_SURFACE = 0, SQ_TREE_DOMAIN = 1, SQ_TREE_ALTERNATE = 2, SQ_TREE_PAIR = 3 };
 
 /* Guidance modes (sq_param_options.guidance):
  *  SQ_GUIDE_AUTO: SQ_GUIDE_ON for genus >= 2, SQ_GUIDE_OFF below (where
