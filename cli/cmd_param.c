@@ -241,7 +241,8 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
     printf("  \"attempts\": %u,\n  \"seed_used\": %llu,\n  \"guided\": %s,\n  \"surface_tree\": %s,\n",
            s->attempts, (unsigned long long)s->seed_used, s->guided ? "true" : "false",
            s->surface_tree ? "true" : "false");
-    printf("  \"interior\": \"%s\",\n", s->overlay ? "overlay" : "cells");
+    printf("  \"interior\": \"%s\",\n  \"tree_pair\": %s,\n", s->overlay ? "overlay" : "cells",
+           s->tree_pair ? "true" : "false");
     printf("  \"refine_rounds\": %u,\n  \"cells_halved\": %u,\n", s->rounds, s->cells_refined);
     printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
            "  \"seam_edges\": %u,\n",

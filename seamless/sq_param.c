@@ -2952,6 +2952,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     if (st == SQ_OK && c.guided) st = guide(&c);
     if (st == SQ_OK) st = replicate_tree(&c, root_he);
     if (st) goto done;
+    stats->tree_pair = c.tree_exact;
     double t1 = sq_now();
     progress(&c, "boundary map", 0.45);
     c.o2m = malloc((size_t)c.O->cut.nh * sizeof *c.o2m);

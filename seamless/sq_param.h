@@ -151,6 +151,7 @@ typedef struct sq_param_stats {
     int guided;                             /* 1: seed 9.2 guidance was used  */
     int surface_tree;                       /* 1: the seed 9.4 surface tree   */
     int overlay;                            /* 1: interior map by overlay     */
+    int tree_pair;                          /* 1: SQ_TREE_PAIR's exact copy   */
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
     double t_overlay; /* step 7' (after the cells by default; kept or not) */

@@ -155,6 +155,12 @@ else
   bad "--interior overlay femur: rc=$rc $(tail -1 "$tmp/ov_femur.err")"
 fi
 
+# --- --tree pair: both trees grown at once as one plane tree (experimental);
+# on eight and holes3 the map passes, holes3 with the overlay's map ---------
+want='j["guided"] and j["tree_pair"]' passes_at eight 1 --tree pair
+want='j["tree_pair"] and j["interior"]=="overlay"' passes_at holes3 1 --tree pair
+want='not j["tree_pair"]' passes_at eight 1
+
 # --- genus 1 with --guide on: Algorithm 1 for the meta-6-gon, the
 # meta-2-gon's cones near the circle (seed 9.2 per piece): mpz/knot1
 # passes with the surface tree, in fewer faces than unguided ------------------
