@@ -2852,14 +2852,16 @@ done:
 }
 
 /* Step 7' with Omega triangulated in its unit squares, and where that
- * fails (over the budget, mostly), in the rectangles of its chords: fewer
- * edges for the surface to cross where Omega is large against the
- * surface (femur, rocker_arm, elk with guidance), more where it is not
- * (fandisk, eight, cup, helmet), hence second (docs/param.md, step 7'). */
-static sq_status overlay_map(ctx *c, const int32_t *valence, sq_param *P, sq_param_stats *stats)
+ * fails (over the budget, mostly) and `rectangles` is set, in the
+ * rectangles of its chords: fewer edges for the surface to cross where
+ * Omega is large against the surface (femur, rocker_arm, elk with
+ * guidance), more where it is not (fandisk, eight, cup, helmet), hence
+ * second (docs/param.md, step 7'). */
+static sq_status overlay_map(ctx *c, const int32_t *valence, int rectangles, sq_param *P,
+                             sq_param_stats *stats)
 {
     sq_status st = overlay_map_once(c, valence, 0, P, stats);
-    if (st != SQ_ERR_SOLVER) return st;
+    if (st != SQ_ERR_SOLVER || !rectangles) return st;
     sq_param_free(P);
     return overlay_map_once(c, valence, 1, P, stats);
 }
@@ -2882,7 +2884,9 @@ static sq_status overlay_after_cells(ctx *c, const before_cells *saved, const in
     c->h_uv = NULL;
     progress(c, "overlay (after the cells)", 0.9);
     sq_status st = before_cells_restore(c, saved);
-    if (st == SQ_OK) st = overlay_map(c, valence, &P, &s);
+    /* the unit squares only: after the cells, the rectangles never made
+     * the overlay pass on the shared models and cost up to 1.4 s more */
+    if (st == SQ_OK) st = overlay_map(c, valence, 0, &P, &s);
     /* the independent check too, before it replaces a map that passed:
      * a failure here falls back to the cells' map instead of ending the
      * run (the overlay is bijective in exact arithmetic; its UVs are not) */
@@ -2967,7 +2971,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     if (opt->interior == SQ_INTERIOR_OVERLAY) { /* step 7' instead of 6-7c */
         progress(&c, "disk maps", 0.55);
         stats->overlay = 1;
-        st = overlay_map(&c, valence, out, stats); /* checks every triangle too */
+        st = overlay_map(&c, valence, 1, out, stats); /* checks every triangle too */
         if (st) goto done;
         t4 = sq_now();
         goto finish;
