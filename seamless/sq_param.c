@@ -11,7 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-
 #include "sq_cones.h"
 #include "sq_cut_graph.h"
 #include "sq_domain.h"
