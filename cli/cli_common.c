@@ -1,6 +1,5 @@
 #include "cli_common.h"
 
-
 #include "sq_cones.h"
 
 void sq_json_string(FILE *f, const char *s)

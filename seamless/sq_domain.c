@@ -39,7 +39,6 @@ void sq_domain_free(sq_domain *D)
     sq_domain_init(D);
 }
 
-
 /* The boundary vertex `steps` edges after boundary vertex v, following the
  * boundary loop (clockwise, sq_metapolygon convention). */
 static uint32_t walk_boundary(const sq_metapolygon *Q, uint32_t v, uint64_t steps)

@@ -133,7 +133,6 @@ static uint32_t s_tree_nbrs(const replica *R, uint32_t x, uint32_t j, uint32_t *
     return n;
 }
 
-
 /* Which surface ends Q can copy at step j: the Q vertices reachable from
  * qv[j] (region[v] == j), and for every arrival at a surface tree vertex
  * whether Q has a free neighbour of the copy in that sector (a node) or of

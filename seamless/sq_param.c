@@ -50,7 +50,6 @@ void sq_param_free(sq_param *P)
     sq_param_init(P);
 }
 
-
 /* ---- working state ---------------------------------------------------- */
 
 typedef struct ctx {
@@ -85,9 +84,7 @@ typedef struct ctx {
     uint32_t root_step;    /* the step whose cone (nearest the circle) Q's */
                            /* root path starts from (SQ_NONE: not guided)  */
     int tree_exact;      /* Q's tree is the surface tree's exact copy    */
-    uint32_t s_tree_root;/* ... whose forest root is then the root vertex */
-    uint32_t tree_refined; /* ... after that many 2 x 2 refinements of Q */
-                         /* (sq_guide_tree_pair)                         */
+                         /* (sq_guide_tree_pair; its root: root_surface) */
     uint32_t *q_branch;  /* Q->nv: seed 9.4 guided tree: the surface vertex */
                          /* where the surface tree branched for a regular  */
                          /* branch vertex of Q's tree; SQ_NONE elsewhere,  */
@@ -422,8 +419,8 @@ static sq_status guided_tree(ctx *c)
              * next nearest (a cone in a pocket of the cut can be reached
              * by no other path) */
             uint8_t *tried = calloc(n1, 1);
-            if (!tried) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-            for (uint32_t k = 0; st == SQ_OK && k < ROOT_TRIES && k < n; k++) {
+            st = !tried ? sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory") : n ? SQ_ERR_SOLVER : SQ_OK;
+            for (uint32_t k = 0; st == SQ_ERR_SOLVER && k < ROOT_TRIES && k < n; k++) {
                 uint32_t r = SQ_NONE;
                 double far = -1;
                 for (uint32_t j = 0; j < n; j++) {
@@ -435,15 +432,11 @@ static sq_status guided_tree(ctx *c)
                 st = sq_guide_tree_pair(&cur->quads, qv, c->m, &c->G, c->step_vertex, n, r, root_cost, c,
                                         c->s_tree_next, sv, qa, &pr, c->T, c->err);
                 if (st == SQ_OK) rs = r;
-                if (st != SQ_ERR_SOLVER) break;
-                st = SQ_OK + 0 * st;
-                if (k + 1 == ROOT_TRIES || k + 1 == n) st = SQ_ERR_SOLVER;
             }
             free(tried);
             if (st == SQ_OK) {
                 c->tree_exact = 1;
-                c->root_surface = c->s_tree_root = pr.vertex;
-                c->tree_refined = level;
+                c->root_surface = pr.vertex;
                 break;
             }
             if (st != SQ_ERR_SOLVER || level == TREE_REFINE) break;
@@ -1081,7 +1074,7 @@ static int given_path(ctx *c, uint32_t sector, uint32_t target, uint32_t **path,
 {
     sq_tsurf *S = &c->S;
     const uint32_t *nx = c->s_tree_next;
-    uint32_t a = S->vert[sector], first = c->tree_exact ? c->s_tree_root : c->step_vertex[0], nv = c->m->nv;
+    uint32_t a = S->vert[sector], first = c->tree_exact ? c->root_surface : c->step_vertex[0], nv = c->m->nv;
     if (a >= nv || target >= nv || S->v_ncut[target]) return 0;
     if (nx[a] == SQ_NONE && a != first) return 0; /* not on the surface tree */
     if (nx[target] == SQ_NONE && target != first) return 0;
@@ -1405,6 +1398,20 @@ static sq_status polyline_uv(ctx *c, const uint32_t *he, uint32_t n, const uint3
     return SQ_OK;
 }
 
+/* Omega's boundary as face halfedges, counterclockwise from the twin of
+ * its boundary halfedge bnd_he (Omega_c's boundary halfedges run
+ * clockwise). Returns the count, or SQ_NONE when the loop does not close
+ * after nbnd edges. oseq: room for W->nbnd. */
+static uint32_t omega_boundary(const sq_metapolygon *W, uint32_t *oseq)
+{
+    uint32_t b = W->bnd_he, nb = W->nbnd;
+    for (uint32_t i = 0; i < nb; i++) {
+        oseq[nb - 1 - i] = W->he_twin[b];
+        b = W->he_next[b];
+    }
+    return b == W->bnd_he ? nb : SQ_NONE;
+}
+
 static sq_status boundary_map(ctx *c)
 {
     sq_tsurf *S = &c->S;
@@ -1420,16 +1427,9 @@ static sq_status boundary_map(ctx *c)
     uint32_t *pl = NULL, npl = 0, *matched = NULL, *uvv = NULL;
     int64_t *g = NULL;
     if (!oseq) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    {
-        uint32_t b = W->bnd_he;
-        for (uint32_t i = 0; i < nb; i++) {
-            oseq[nb - 1 - i] = W->he_twin[b];
-            b = W->he_next[b];
-        }
-        if (b != W->bnd_he) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", nb);
-            goto done;
-        }
+    if (omega_boundary(W, oseq) == SQ_NONE) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", nb);
+        goto done;
     }
     /* M: boundary loop from the first cut graph halfedge */
     uint32_t h0 = SQ_NONE;
@@ -2589,157 +2589,159 @@ done:
  * surface whose every triangle lies in one triangle of B, whose affine
  * map gives its UVs. Bijective in exact arithmetic for any Omega, convex or
  * not, immersed or not; no chords, no cells. Fills P. */
-static sq_status overlay_map_once(ctx *c, const int32_t *valence, int coarse, sq_param *P,
-                                  sq_param_stats *stats)
+/* Step 7', the surface's side: the cut surface A on the unit disk, once
+ * per attempt (overlay_with may then try several triangulations of
+ * Omega). Ids: [0, nbl) the boundary loop from the copy of Omega's first
+ * corner, [nbl, na) the vertices off the cut. */
+typedef struct surface_disk {
+    uint32_t nbl, na;
+    uint32_t *mseq;   /* nbl: the cut halfedge naming boundary vertex i    */
+    uint32_t *a2s;    /* na: the surface vertex of every id                */
+    uint32_t *tri;    /* 3 S.nf: the faces of S in ids                     */
+    uint32_t *twin;   /* 3 S.nf: their twins, SQ_NONE across the cut       */
+    uint32_t *wb;     /* O->cut.nv: the id of Omega's boundary vertices    */
+    uint32_t *bstart; /* nbnd: the id at the start of Omega's boundary     */
+                      /* edge i (its surface points follow it)             */
+    double *buv;      /* 2 nbl: the boundary's UVs                         */
+    double *xy;       /* 2 na: disk positions                              */
+} surface_disk;
+
+static void surface_disk_free(surface_disk *A)
+{
+    free(A->mseq), free(A->a2s), free(A->tri), free(A->twin), free(A->wb), free(A->bstart);
+    free(A->buv), free(A->xy);
+    memset(A, 0, sizeof *A);
+}
+
+static sq_status surface_disk_build(ctx *c, const uint32_t *oseq, surface_disk *A)
 {
     sq_tsurf *S = &c->S;
-    const sq_omega *O = c->O;
-    const sq_metapolygon *W = &O->cut;
+    const sq_metapolygon *W = &c->O->cut;
     sq_error *err = c->err;
     sq_status st = SQ_OK;
-    if (sq_tsurf_split_blocking(S, 0) < 0 || sec_reserve(c)) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
     uint32_t nb = W->nbnd;
-    uint32_t *oseq = malloc((size_t)nb * sizeof *oseq), *opos = malloc((size_t)W->nh * sizeof *opos);
-    uint32_t *bidx = malloc((size_t)S->nh * sizeof *bidx), *mseq = malloc((size_t)S->nh * sizeof *mseq);
-    uint32_t *aid = malloc((size_t)S->nv * sizeof *aid), *wid = malloc((size_t)W->nv * sizeof *wid);
-    uint32_t *mid = malloc((size_t)W->nh * sizeof *mid);
-    uint32_t *a2s = NULL, *btri = NULL, *btw = NULL, *atri = NULL, *atw = NULL, *ring = NULL, *ptw = NULL;
-    double *xy = NULL, *p3 = NULL, *buv = NULL;
-    sq_overlay X;
-    sq_overlay_init(&X);
-    if (!oseq || !opos || !bidx || !mseq || !aid || !wid || !mid) {
+    uint32_t *bidx = malloc((size_t)S->nh * sizeof *bidx), *aid = malloc((size_t)S->nv * sizeof *aid);
+    uint32_t *hpos = malloc((size_t)S->nh * sizeof *hpos);
+    double *p3 = NULL;
+    memset(A, 0, sizeof *A);
+    A->mseq = malloc((size_t)S->nh * sizeof *A->mseq);
+    A->tri = malloc(3 * (size_t)S->nf * sizeof *A->tri);
+    A->twin = malloc(3 * (size_t)S->nf * sizeof *A->twin);
+    A->wb = malloc((size_t)W->nv * sizeof *A->wb);
+    A->bstart = malloc((size_t)nb * sizeof *A->bstart);
+    if (!bidx || !aid || !hpos || !A->mseq || !A->tri || !A->twin || !A->wb || !A->bstart) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    for (uint32_t h = 0; h < W->nh; h++) opos[h] = SQ_NONE, mid[h] = SQ_NONE;
-    {
-        uint32_t b = W->bnd_he;
-        for (uint32_t i = 0; i < nb; i++) {
-            oseq[nb - 1 - i] = W->he_twin[b];
-            b = W->he_next[b];
-        }
-        for (uint32_t i = 0; i < nb; i++) opos[oseq[i]] = i;
-    }
     /* the surface's boundary loop, from the copy of Omega's first corner */
     for (uint32_t h = 0; h < S->nh; h++) bidx[h] = SQ_NONE;
-    uint32_t nbl = 0;
-    {
-        uint32_t h0 = c->o2m[oseq[0]], h = h0;
-        if (h0 == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's boundary has no surface copy");
-            goto done;
-        }
-        do {
-            if (nbl == S->nh) break;
-            bidx[h] = nbl;
-            mseq[nbl++] = h;
-            h = sq_tsurf_next_boundary(S, h);
-        } while (h != h0);
-        if (h != h0) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the surface boundary loop does not close");
-            goto done;
-        }
+    uint32_t h0 = c->o2m[oseq[0]], h = h0, nbl = 0;
+    if (h0 == SQ_NONE) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's boundary has no surface copy");
+        goto done;
     }
-    /* A: the surface; interior vertices after the boundary */
+    do {
+        bidx[h] = nbl;
+        A->mseq[nbl++] = h;
+        h = sq_tsurf_next_boundary(S, h);
+    } while (h != h0 && nbl < S->nh);
+    if (h != h0) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the surface boundary loop does not close");
+        goto done;
+    }
     uint32_t na = nbl;
     for (uint32_t v = 0; v < S->nv; v++) aid[v] = S->v_ncut[v] ? SQ_NONE : na++;
-    for (uint32_t v = 0; v < W->nv; v++) wid[v] = SQ_NONE;
+    A->nbl = nbl, A->na = na;
+    /* Omega's boundary vertices: their surface copies */
+    for (uint32_t v = 0; v < W->nv; v++) A->wb[v] = SQ_NONE;
     for (uint32_t i = 0; i < nb; i++) {
         uint32_t f = oseq[i], v = W->he_vert[f], m = c->o2m[f];
-        if (m == SQ_NONE || bidx[m] == SQ_NONE || (wid[v] != SQ_NONE && wid[v] != bidx[m])) {
+        if (m == SQ_NONE || bidx[m] == SQ_NONE || (A->wb[v] != SQ_NONE && A->wb[v] != bidx[m])) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's boundary vertex %u has no single surface copy", v);
             goto done;
         }
-        wid[v] = bidx[m];
-        mid[i] = bidx[m];
+        A->wb[v] = A->bstart[i] = bidx[m];
     }
-    double *buv0 = malloc(2 * (size_t)nbl * sizeof *buv0);
-    if (!buv0) {
+    A->a2s = malloc((size_t)na * sizeof *A->a2s);
+    A->buv = malloc(2 * (size_t)nbl * sizeof *A->buv);
+    A->xy = malloc(2 * (size_t)na * sizeof *A->xy);
+    p3 = malloc(3 * (size_t)na * sizeof *p3);
+    if (!A->a2s || !A->buv || !A->xy || !p3) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
     for (uint32_t i = 0; i < nbl; i++) {
-        const double *u = c->uv + 2 * (size_t)c->sec_uv[mseq[i]];
-        buv0[2 * i] = u[0], buv0[2 * i + 1] = u[1];
+        A->a2s[i] = S->vert[A->mseq[i]];
+        const double *u = c->uv + 2 * (size_t)c->sec_uv[A->mseq[i]];
+        A->buv[2 * i] = u[0], A->buv[2 * i + 1] = u[1];
     }
-    sq_omega_cells Cc;
-    sq_omega_cells_init(&Cc);
-    if (coarse) st = sq_omega_cells_build(O, 0, NULL, &Cc, err);
-    uint32_t nv = 0;
-    tri_list bt = {0};
-    if (st == SQ_OK) st = omega_triangulation(O, coarse ? &Cc : NULL, nbl, na, wid, oseq, mid, buv0, &nv, &buv, &bt, err);
-    sq_omega_cells_free(&Cc);
-    free(buv0);
-    btri = bt.t;
-    uint32_t nbt = bt.n;
-    if (st) goto done;
-    a2s = malloc((size_t)na * sizeof *a2s);
-    xy = malloc(2 * (size_t)nv * sizeof *xy);
-    p3 = calloc(3 * (size_t)nv, sizeof *p3);
-    if (!a2s || !xy || !p3) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    for (uint32_t i = 0; i < nbl; i++) a2s[i] = S->vert[mseq[i]];
     for (uint32_t v = 0; v < S->nv; v++)
-        if (aid[v] != SQ_NONE) a2s[aid[v]] = v;
+        if (aid[v] != SQ_NONE) A->a2s[aid[v]] = v;
     /* the boundary on the unit circle by Omega's arc length */
-    {
-        double L = 0;
-        for (uint32_t i = 0; i < nbl; i++) {
-            const double *u = buv + 2 * i, *w = buv + 2 * ((i + 1) % nbl);
-            L += hypot(w[0] - u[0], w[1] - u[1]);
-        }
-        double s = 0;
-        for (uint32_t i = 0; i < nbl; i++) {
-            double t = 6.283185307179586 * s / L;
-            xy[2 * i] = cos(t), xy[2 * i + 1] = sin(t);
-            const double *u = buv + 2 * i, *w = buv + 2 * ((i + 1) % nbl);
-            s += hypot(w[0] - u[0], w[1] - u[1]);
-        }
+    double L = 0, s = 0;
+    for (uint32_t i = 0; i < nbl; i++) {
+        const double *u = A->buv + 2 * i, *w = A->buv + 2 * ((i + 1) % nbl);
+        L += hypot(w[0] - u[0], w[1] - u[1]);
     }
-    /* A's triangles: the faces of S */
-    atri = malloc(3 * (size_t)S->nf * sizeof *atri);
-    atw = malloc(3 * (size_t)S->nf * sizeof *atw);
-    uint32_t *hpos = malloc((size_t)S->nh * sizeof *hpos);
-    if (!atri || !atw || !hpos) {
-        free(hpos);
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
+    for (uint32_t i = 0; i < nbl; i++) {
+        double t = 6.283185307179586 * s / L;
+        A->xy[2 * i] = cos(t), A->xy[2 * i + 1] = sin(t);
+        const double *u = A->buv + 2 * i, *w = A->buv + 2 * ((i + 1) % nbl);
+        s += hypot(w[0] - u[0], w[1] - u[1]);
     }
-    for (uint32_t f = 0; f < S->nf; f++) {
-        uint32_t h = S->f_he[f];
-        for (uint32_t i = 0; i < 3; i++, h = S->next[h]) {
-            hpos[h] = 3 * f + i;
-            uint32_t v = S->vert[h];
-            if (aid[v] != SQ_NONE) {
-                atri[3 * f + i] = aid[v];
-            } else {
-                uint32_t sec = sq_tsurf_sector_of(S, h);
-                atri[3 * f + i] = sec == SQ_NONE ? SQ_NONE : bidx[sec];
-                if (atri[3 * f + i] == SQ_NONE) {
-                    free(hpos);
-                    st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: a sector of vertex %u is off the boundary loop", v);
-                    goto done;
-                }
-            }
+    /* A's triangles: the faces of S, a boundary corner named by its sector */
+    for (uint32_t f = 0; f < S->nf && st == SQ_OK; f++) {
+        uint32_t e = S->f_he[f];
+        for (uint32_t i = 0; i < 3; i++, e = S->next[e]) {
+            hpos[e] = 3 * f + i;
+            uint32_t v = S->vert[e], sec = aid[v] != SQ_NONE ? SQ_NONE : sq_tsurf_sector_of(S, e);
+            A->tri[3 * f + i] = aid[v] != SQ_NONE ? aid[v] : sec == SQ_NONE ? SQ_NONE : bidx[sec];
+            if (A->tri[3 * f + i] == SQ_NONE)
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: a sector of vertex %u is off the boundary loop", v);
         }
     }
-    for (uint32_t f = 0; f < S->nf; f++) {
-        uint32_t h = S->f_he[f];
-        for (uint32_t i = 0; i < 3; i++, h = S->next[h]) atw[3 * f + i] = S->kind[h] ? SQ_NONE : hpos[S->twin[h]];
-    }
-    free(hpos);
-    for (uint32_t i = 0; i < na; i++) memcpy(p3 + 3 * (size_t)i, S->pos + 3 * (size_t)a2s[i], 3 * sizeof *p3);
-    st = disk_tutte(S->nf, atri, atw, nbl, na - nbl, p3, xy, err);
     if (st) goto done;
+    for (uint32_t f = 0; f < S->nf; f++) {
+        uint32_t e = S->f_he[f];
+        for (uint32_t i = 0; i < 3; i++, e = S->next[e]) A->twin[3 * f + i] = S->kind[e] ? SQ_NONE : hpos[S->twin[e]];
+    }
+    for (uint32_t i = 0; i < na; i++) memcpy(p3 + 3 * (size_t)i, S->pos + 3 * (size_t)A->a2s[i], 3 * sizeof *p3);
+    st = disk_tutte(S->nf, A->tri, A->twin, nbl, na - nbl, p3, A->xy, err);
+done:
+    free(bidx), free(aid), free(hpos), free(p3);
+    if (st) surface_disk_free(A);
+    return st;
+}
+
+/* Step 7' against one triangulation of Omega (omega_triangulation; C:
+ * the chords' rectangles, or NULL: the unit squares): Omega on the disk
+ * with A's boundary points, the overlay, and P from it. */
+static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *oseq, const sq_omega_cells *C,
+                              const int32_t *valence, sq_param *P, sq_param_stats *stats)
+{
+    sq_tsurf *S = &c->S;
+    sq_error *err = c->err;
+    uint32_t nbl = A->nbl, na = A->na, nv = 0;
+    double *xy = NULL, *p3 = NULL, *buv = NULL;
+    uint32_t *btw = NULL;
+    tri_list bt = {0};
+    sq_overlay X;
+    sq_overlay_init(&X);
+    sq_mesh pm;
+    memset(&pm, 0, sizeof pm);
+    sq_status st = omega_triangulation(c->O, C, nbl, na, A->wb, oseq, A->bstart, A->buv, &nv, &buv, &bt, err);
+    if (st) goto done;
+    const uint32_t *btri = bt.t;
+    uint32_t nbt = bt.n;
     for (uint32_t g = 0; g < nbt; g++)
         if (sq_orient2d(buv + 2 * (size_t)btri[3 * g], buv + 2 * (size_t)btri[3 * g + 1], buv + 2 * (size_t)btri[3 * g + 2]) <= 0) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangle %u is not positively oriented", g);
             goto done;
         }
+    xy = malloc(2 * (size_t)nv * sizeof *xy);
+    p3 = calloc(3 * (size_t)nv, sizeof *p3);
     btw = malloc(3 * (size_t)nbt * sizeof *btw);
-    if (!btw) {
+    if (!xy || !p3 || !btw) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -2747,13 +2749,16 @@ static sq_status overlay_map_once(ctx *c, const int32_t *valence, int coarse, sq
         st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangulation is not a manifold disk");
         goto done;
     }
-    for (uint32_t i = na; i < nv; i++) p3[3 * (size_t)i] = buv[2 * i], p3[3 * (size_t)i + 1] = buv[2 * i + 1];
-    for (uint32_t i = 0; i < nbl; i++) p3[3 * (size_t)i] = buv[2 * i], p3[3 * (size_t)i + 1] = buv[2 * i + 1], p3[3 * (size_t)i + 2] = 0;
+    /* B on the disk: A's positions for the shared boundary, Tutte inside
+     * with weights from Omega's geometry (its UVs, flat) */
+    memcpy(xy, A->xy, 2 * (size_t)na * sizeof *xy);
+    for (uint32_t i = 0; i < nv; i++)
+        if (i < nbl || i >= na) p3[3 * (size_t)i] = buv[2 * i], p3[3 * (size_t)i + 1] = buv[2 * i + 1];
     st = disk_tutte(nbt, btri, btw, na, nv - na, p3, xy, err);
     if (st) goto done;
-    sq_overlay_mesh A = {S->nf, atri, atw}, B = {nbt, btri, btw};
+    sq_overlay_mesh Am = {S->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
     progress(c, "overlay", 0.75);
-    st = sq_overlay_build(nbl, na, nv, xy, &A, &B, steiner_budget(c), &X, err);
+    st = sq_overlay_build(nbl, na, nv, xy, &Am, &Bm, steiner_budget(c), &X, err);
     if (st) goto done;
     /* the output: S's vertices, then B's interior vertices, then the crossings */
     uint32_t nout = S->nv + (nv - na) + X.nx;
@@ -2765,11 +2770,11 @@ static sq_status overlay_map_once(ctx *c, const int32_t *valence, int coarse, sq
     P->he_seam = malloc(3 * (size_t)X.ntri);
     P->he_cut = malloc(3 * (size_t)X.ntri);
     P->valence = malloc((size_t)S->nv_input * sizeof *P->valence);
-    ptw = malloc(3 * (size_t)X.ntri * sizeof *ptw);
-    if (!P->pos || !P->uv || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->valence || !ptw) {
+    if (!P->pos || !P->uv || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->valence) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
+    const uint32_t *a2s = A->a2s, *atri = A->tri;
     memcpy(P->pos, S->pos, 3 * (size_t)S->nv * sizeof *P->pos);
     memcpy(P->valence, valence, (size_t)S->nv_input * sizeof *P->valence);
     for (uint32_t i = na; i < nv; i++) {
@@ -2809,21 +2814,16 @@ static sq_status overlay_map_once(ctx *c, const int32_t *valence, int coarse, sq
             P->tri_uv[3 * (size_t)f + i] = o;
             P->tri[3 * (size_t)f + i] = o < na ? a2s[o] : S->nv + (o - na);
             uint32_t o1 = X.tri[3 * (size_t)f + (i + 1) % 3];
-            P->he_cut[3 * (size_t)f + i] = o < nbl && o1 == (o + 1) % nbl ? S->kind[mseq[o]] : 0;
+            P->he_cut[3 * (size_t)f + i] = o < nbl && o1 == (o + 1) % nbl ? S->kind[A->mseq[o]] : 0;
         }
-    if (pair_twins(X.ntri, P->tri, ptw)) {
-        st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the refined surface is not a manifold");
-        goto done;
-    }
+    /* the seams from the output's own halfedge mesh (halfedge k = corner k;
+     * it also checks that the refined surface is a closed manifold) */
+    st = sq_param_mesh(P, "overlay", &pm, err);
+    if (st) goto done;
     uint32_t seams = 0, bad = 0, first = SQ_NONE;
     for (uint32_t k = 0; k < 3 * X.ntri; k++) {
-        uint32_t g = ptw[k];
-        if (g == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the refined surface has a boundary edge");
-            goto done;
-        }
-        uint32_t kn = k - k % 3 + (k % 3 + 1) % 3, gn = g - g % 3 + (g % 3 + 1) % 3;
-        P->he_seam[k] = P->tri_uv[k] != P->tri_uv[gn] || P->tri_uv[kn] != P->tri_uv[g];
+        uint32_t g = pm.he_twin[k];
+        P->he_seam[k] = P->tri_uv[k] != P->tri_uv[pm.he_next[g]] || P->tri_uv[pm.he_next[k]] != P->tri_uv[g];
         if (P->he_seam[k] && k < g) seams++;
     }
     for (uint32_t f = 0; f < X.ntri; f++)
@@ -2844,25 +2844,41 @@ static sq_status overlay_map_once(ctx *c, const int32_t *valence, int coarse, sq
                           bad, P->nf, first);
 done:
     sq_overlay_free(&X);
-    free(oseq), free(opos), free(bidx), free(mseq), free(aid), free(wid), free(mid);
-    free(a2s), free(btri), free(btw), free(atri), free(atw), free(ring), free(ptw);
-    free(xy), free(p3), free(buv);
+    sq_mesh_free(&pm);
+    free(bt.t), free(btw), free(xy), free(p3), free(buv);
     return st;
 }
 
-/* Step 7' with Omega triangulated in its unit squares, and where that
- * fails (over the budget, mostly) and `rectangles` is set, in the
- * rectangles of its chords: fewer edges for the surface to cross where
- * Omega is large against the surface (femur, rocker_arm, elk with
- * guidance), more where it is not (fandisk, eight, cup, helmet), hence
- * second (docs/param.md, step 7'). */
+/* Step 7': the cut surface on the disk once, then Omega triangulated in
+ * its unit squares, and where that fails (over the budget, mostly) and
+ * `rectangles` is set, in the rectangles of its chords: fewer edges for
+ * the surface to cross where Omega is large against the surface (femur,
+ * rocker_arm, elk with guidance), more where it is not (fandisk, eight,
+ * cup, helmet), hence second (docs/param.md, step 7'). */
 static sq_status overlay_map(ctx *c, const int32_t *valence, int rectangles, sq_param *P,
                              sq_param_stats *stats)
 {
-    sq_status st = overlay_map_once(c, valence, 0, P, stats);
-    if (st != SQ_ERR_SOLVER || !rectangles) return st;
-    sq_param_free(P);
-    return overlay_map_once(c, valence, 1, P, stats);
+    const sq_metapolygon *W = &c->O->cut;
+    if (sq_tsurf_split_blocking(&c->S, 0) < 0 || sec_reserve(c)) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    uint32_t *oseq = malloc(((size_t)W->nbnd + 1) * sizeof *oseq);
+    if (!oseq) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    surface_disk A;
+    memset(&A, 0, sizeof A);
+    sq_status st = omega_boundary(W, oseq) == SQ_NONE
+                       ? sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", W->nbnd)
+                       : surface_disk_build(c, oseq, &A);
+    if (st == SQ_OK) st = overlay_with(c, &A, oseq, NULL, valence, P, stats);
+    if (st == SQ_ERR_SOLVER && rectangles) {
+        sq_param_free(P);
+        sq_omega_cells C;
+        sq_omega_cells_init(&C);
+        st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
+        if (st == SQ_OK) st = overlay_with(c, &A, oseq, &C, valence, P, stats);
+        sq_omega_cells_free(&C);
+    }
+    surface_disk_free(&A);
+    free(oseq);
+    return st;
 }
 
 /* SQ_INTERIOR_AUTO: the cells have passed; the overlay (step 7') on the

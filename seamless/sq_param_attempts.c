@@ -22,7 +22,6 @@
 #include "sq_param.h"
 #include "sq_param_internal.h"
 
-
 /* The options of attempt a. */
 static sq_param_options attempt_options(const sq_param_options *o, uint32_t a, int alternate)
 {

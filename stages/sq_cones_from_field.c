@@ -28,7 +28,6 @@
 
 #include "sq_cones.h"
 
-
 static int64_t defect_sum(uint32_t nv, const int32_t *valence)
 {
     int64_t s = 0;

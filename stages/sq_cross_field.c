@@ -28,7 +28,6 @@
  * matters for the field. */
 #define SQ_CF_REL_SHIFT 1e-9
 
-
 void sq_cross_field_default_options(sq_cross_field_options *opt)
 {
     memset(opt, 0, sizeof *opt);

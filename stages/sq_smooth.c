@@ -61,7 +61,6 @@ typedef struct smoother {
     sq_smooth_ctx ctx;
 } smoother;
 
-
 static void set_frames(smoother *s)
 {
     for (uint32_t v = 0; v < s->nv; v++) {
