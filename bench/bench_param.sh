@@ -6,7 +6,8 @@
 # result (and the interior map kept: cells or overlay), attempts, mean
 # conformal ratio of the map, time per step (of the successful attempt) and wall time
 # in total (median of N runs), peak RSS,
-# faces in and out, quads of the domain, beside the seed's Table 1. Default
+# faces in, as built and out (after simplification), quads of the domain,
+# beside the seed's Table 1. Default
 # options (up to 16 attempts with the next cut-graph seed, guidance auto);
 # a failed model shows the wall time and memory until its clean failure, and
 # the domain of its last attempt (--json "last_attempt").
@@ -42,7 +43,7 @@ for line in open(shared + "/data/MANIFEST.tsv"):
         continue
     models.append((f[0], f[9]))
 models.sort(key=lambda m: (m[0] not in table1, m[0]))
-steps = ["cut", "domain", "omega", "tree", "boundary", "cells", "tutte", "check", "overlay"]
+steps = ["cut", "domain", "omega", "tree", "boundary", "cells", "tutte", "check", "overlay", "simplify"]
 
 def run(mesh, cfile):
     """one `param` run with the default options; (json or None, wall s, peak RSS MB)"""
@@ -58,9 +59,9 @@ def run(mesh, cfile):
         j = {"ok": False, "error": {"message": open(tmp + "/err.txt").read().strip()}}
     return j, wall, ru.ru_maxrss / 1024.0
 
-print("| model | genus | cones | result (interior map) | attempts | faces in | faces out | Steiner | conformal mean | quads (init + pad) | "
+print("| model | genus | cones | result (interior map) | attempts | faces in | faces built | faces out | Steiner | conformal mean | quads (init + pad) | "
       + " | ".join(steps) + " | total (s) | peak RSS (MB) | seed Table 1: init + pad, time |")
-print("|---|---:|---:|---|---:|---:|---:|---:|---:|---|" + "---:|" * len(steps) + "---:|---:|---|")
+print("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|" + "---:|" * len(steps) + "---:|---:|---|")
 for path, cones in models:
     mesh = shared + "/data/" + path
     cfile = mesh.rsplit("/", 1)[0] + "/" + cones
@@ -78,14 +79,14 @@ for path, cones in models:
         la = j.get("last_attempt", {})
         quads = "%d + %d" % (la["quads_before_padding"], la["quads_added_by_padding"]) if la else ""
         cells = ([path, str(la.get("genus", "")), str(la.get("cones", "")), "FAIL: " + why,
-                  str(la.get("attempts", ""))] + [""] * 4 + [quads] + [""] * len(steps)
+                  str(la.get("attempts", ""))] + [""] * 5 + [quads] + [""] * len(steps)
                  + ["%.2f" % wall, "%.0f" % rss, ref])
         print("| " + " | ".join(cells) + " |")
         continue
     med = lambda key: statistics.median(r[0]["time_s"][key] for r in runs)
-    print("| %s | %d | %d | PASS (%s) | %d (seed %d) | %d | %d | %d | %.3g | %d + %d | %s | %.2f | %.0f | %s |" % (
+    print("| %s | %d | %d | PASS (%s) | %d (seed %d) | %d | %d | %d | %d | %.3g | %d + %d | %s | %.2f | %.0f | %s |" % (
         path, j["genus"], j["cones"], j["interior"], j["attempts"], j["seed_used"], j["faces_in"],
-        j["faces_out"], j["steiner"], j["distortion"]["conformal_mean"],
+        j["faces_unsimplified"] or j["faces_out"], j["faces_out"], j["steiner"], j["distortion"]["conformal_mean"],
         j["quads_before_padding"], j["quads_added_by_padding"],
         " | ".join("%.3f" % med(k) for k in steps), wall, rss, ref))
 PY

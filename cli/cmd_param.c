@@ -120,6 +120,11 @@ static void help(FILE *f)
             "                      from the surface's they exceed --max-steiner; auto\n"
             "                      (default): cells, then the overlay on the same cuts,\n"
             "                      whose map is kept when it passes (docs/param.md, 7')\n"
+            "  --simplify on|off   on (default): the map that passed is simplified: added\n"
+            "                      vertices off the seams are removed by edge collapses\n"
+            "                      wherever every check still holds and no triangle gets\n"
+            "                      more distorted (nothing moves; outputs shrink 2 to 13\n"
+            "                      times; docs/param.md, step 9); off: the map as built\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -243,6 +248,7 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            s->surface_tree ? "true" : "false");
     printf("  \"interior\": \"%s\",\n  \"tree_pair\": %s,\n", s->overlay ? "overlay" : "cells",
            s->tree_pair ? "true" : "false");
+    printf("  \"simplified\": %u,\n  \"faces_unsimplified\": %u,\n", s->simplified, s->faces_unsimplified);
     printf("  \"refine_rounds\": %u,\n  \"cells_halved\": %u,\n", s->rounds, s->cells_refined);
     printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
            "  \"seam_edges\": %u,\n",
@@ -254,10 +260,11 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            "\"integer_translations\": true, \"cones_on_grid\": true, \"angle_sums\": true},\n");
     printf("  \"time_s\": {\"read\": %.6f, \"validate\": %.6f, \"cut\": %.6f, \"domain\": %.6f, "
            "\"omega\": %.6f, \"tree\": %.6f, \"boundary\": %.6f, \"cells\": %.6f, \"tutte\": %.6f, "
-           "\"check\": %.6f, \"overlay\": %.6f, \"param_total\": %.6f, \"verify\": %.6f, "
-           "\"output\": %.6f, \"total\": %.6f},\n",
+           "\"check\": %.6f, \"overlay\": %.6f, \"simplify\": %.6f, \"param_total\": %.6f, "
+           "\"verify\": %.6f, \"output\": %.6f, \"total\": %.6f},\n",
            t_read, t_validate, s->t_cut, s->t_domain, s->t_omega, s->t_tree, s->t_boundary,
-           s->t_cells, s->t_tutte, s->t_check, s->t_overlay, s->t_total, t_verify, t_output, t_total);
+           s->t_cells, s->t_tutte, s->t_check, s->t_overlay, s->t_simplify, s->t_total, t_verify, t_output,
+           t_total);
     printf("  \"peak_rss_mb\": %.1f,\n  \"outputs\": [", peak_rss_kb() / 1024.0);
     first = 1;
     for (int i = 0; i < NOUT; i++) {
@@ -305,6 +312,9 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
     if (s->rounds)
         printf("refinement     %u rounds: %u cells with bad triangles halved (step 7c)\n", s->rounds,
                s->cells_refined);
+    if (s->faces_unsimplified)
+        printf("simplified     %u added vertices removed: %u faces -> %u\n", s->simplified,
+               s->faces_unsimplified, s->faces_out);
     printf("output         %u vertices (%u Steiner), %u faces, %u UV points, %u seam edges\n",
            s->verts_out, s->steiner, s->faces_out, s->nuv, s->seam_edges);
     printf("distortion     symmetric Dirichlet mean %.4g max %.4g; conformal ratio mean %.4g "
@@ -315,9 +325,9 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
            "integer grid; angle sums = cone angles\n");
     printf("time           read %.2f s, validate %.2f s, cut %.2f s, domain %.2f s, omega %.2f s, "
            "tree %.2f s, boundary %.2f s, cells %.2f s, tutte %.2f s, check %.2f s, overlay "
-           "%.2f s, verify %.2f s, output %.2f s; total %.2f s\n",
+           "%.2f s, simplify %.2f s, verify %.2f s, output %.2f s; total %.2f s\n",
            t_read, t_validate, s->t_cut, s->t_domain, s->t_omega, s->t_tree, s->t_boundary,
-           s->t_cells, s->t_tutte, s->t_check, s->t_overlay, t_verify, t_output, t_total);
+           s->t_cells, s->t_tutte, s->t_check, s->t_overlay, s->t_simplify, t_verify, t_output, t_total);
     printf("memory         peak %.1f MB\n", peak_rss_kb() / 1024.0);
     for (int i = 0; i < NOUT; i++)
         if (out[i].path) printf("wrote          %s\n", out[i].path);
@@ -399,6 +409,7 @@ int sq_cmd_param(int argc, char **argv)
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     unsigned long long threads = ncpu > 1 ? 2 : 1;
     int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE, interior = SQ_INTERIOR_AUTO;
+    int simplify = SQ_SIMPLIFY_ON;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -448,6 +459,14 @@ int sq_cmd_param(int argc, char **argv)
                 fprintf(stderr, "seamquad param: --interior takes auto, cells or overlay, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
+        } else if (!strcmp(a, "--simplify") && has) {
+            const char *arg = argv[++i];
+            if (!strcmp(arg, "on")) simplify = SQ_SIMPLIFY_ON;
+            else if (!strcmp(arg, "off")) simplify = SQ_SIMPLIFY_OFF;
+            else {
+                fprintf(stderr, "seamquad param: --simplify takes on or off, got '%s'\n", arg);
+                return SQ_EXIT_USAGE;
+            }
         } else if (!strcmp(a, "--guide") && has) {
             const char *arg = argv[++i];
             if (!strcmp(arg, "auto")) guidance = SQ_GUIDE_AUTO;
@@ -493,6 +512,7 @@ int sq_cmd_param(int argc, char **argv)
     opt.guidance = guidance;
     opt.tree = tree;
     opt.interior = interior;
+    opt.simplify = simplify;
     opt.progress = on_progress;
     opt.progress_ctx = &ps;
     sq_error err;

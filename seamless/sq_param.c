@@ -37,6 +37,7 @@ void sq_param_free(sq_param *P)
     free(P->pos);
     free(P->tri);
     free(P->tri_uv);
+    free(P->tri_in);
     free(P->uv);
     free(P->he_seam);
     free(P->he_cut);
@@ -2131,7 +2132,7 @@ static sq_status before_cells_restore(ctx *c, const before_cells *b)
  * of the linear map from the 3D triangle to its UV triangle; symmetric
  * Dirichlet s1^2 + s2^2 + s1^-2 + s2^-2 after the global scale that
  * minimizes its area-weighted sum, and the conformal ratio s1 / s2. */
-static void distortion(const sq_param *P, sq_param_stats *stats)
+void sq_param_distortion(const sq_param *P, sq_param_stats *stats)
 {
     /* per face: 3D area, s1^2 + s2^2, s1^-2 + s2^-2 */
     double *t = malloc(3 * (size_t)P->nf * sizeof *t);
@@ -2184,9 +2185,11 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
     P->tri_uv = malloc(3 * (size_t)S->nf * sizeof *P->tri_uv);
     P->he_seam = malloc(3 * (size_t)S->nf);
     P->he_cut = malloc(3 * (size_t)S->nf);
+    P->tri_in = malloc((size_t)S->nf * sizeof *P->tri_in);
     P->valence = malloc((size_t)S->nv_input * sizeof *P->valence);
-    if (!P->pos || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->valence)
+    if (!P->pos || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->tri_in || !P->valence)
         return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    memcpy(P->tri_in, S->forig, (size_t)S->nf * sizeof *P->tri_in);
     memcpy(P->pos, S->pos, 3 * (size_t)S->nv * sizeof *P->pos);
     memcpy(P->valence, valence, (size_t)S->nv_input * sizeof *P->valence);
     /* corner 3f + i of the output is halfedge ch[3f + i] of S */
@@ -2261,7 +2264,7 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
         stats->nuv = nu;
         stats->seam_edges = seams;
     }
-    if (stats && !bad) distortion(P, stats);
+    if (stats && !bad) sq_param_distortion(P, stats);
     if (bad && !c->keep_flips)
         return sq_error_set(c->err, SQ_ERR_SOLVER,
                             "the interior map is not injective in floating point: %u of %u UV "
@@ -2769,8 +2772,9 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     P->tri_uv = malloc(3 * (size_t)X.ntri * sizeof *P->tri_uv);
     P->he_seam = malloc(3 * (size_t)X.ntri);
     P->he_cut = malloc(3 * (size_t)X.ntri);
+    P->tri_in = malloc((size_t)X.ntri * sizeof *P->tri_in);
     P->valence = malloc((size_t)S->nv_input * sizeof *P->valence);
-    if (!P->pos || !P->uv || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->valence) {
+    if (!P->pos || !P->uv || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->tri_in || !P->valence) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -2808,6 +2812,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
         double t = X.x_tb[k];
         for (int d = 0; d < 2; d++) P->uv[2 * ((size_t)nv + k) + d] = (1 - t) * u0[d] + t * u1[d];
     }
+    for (uint32_t f = 0; f < X.ntri; f++) P->tri_in[f] = S->forig[X.tri_fa[f]];
     for (uint32_t f = 0; f < X.ntri; f++)
         for (int i = 0; i < 3; i++) {
             uint32_t o = X.tri[3 * (size_t)f + i];
@@ -2836,7 +2841,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     stats->steiner = P->nv - P->nv_input;
     stats->nuv = P->nuv;
     stats->seam_edges = seams;
-    if (!bad) distortion(P, stats);
+    if (!bad) sq_param_distortion(P, stats);
     if (bad && !c->keep_flips)
         st = sq_error_set(err, SQ_ERR_SOLVER,
                           "the interior map (overlay) is not injective in floating point: %u of %u UV "

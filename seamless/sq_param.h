@@ -85,9 +85,14 @@ typedef struct sq_param_options {
      * when they pass, the overlay on the same cuts, whose map replaces
      * theirs if it passes too (far less distorted; docs/param.md). */
     int interior;
+    /* SQ_SIMPLIFY_ON (default): the map that passed is simplified
+     * (sq_param_simplify: added vertices off the seams removed where every
+     * check still holds); SQ_SIMPLIFY_OFF: the map as built. */
+    int simplify;
 } sq_param_options;
 
 enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2 };
+enum { SQ_SIMPLIFY_ON = 0, SQ_SIMPLIFY_OFF = 1 };
 
 #define SQ_PARAM_REFINE 8
 
@@ -155,6 +160,10 @@ typedef struct sq_param_stats {
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
     double t_overlay; /* step 7' (after the cells by default; kept or not) */
+    /* sq_param_simplify on the result (SQ_SIMPLIFY_ON): added vertices it
+     * removed, the faces before it, its time (within t_total) */
+    uint32_t simplified, faces_unsimplified;
+    double t_simplify;
 } sq_param_stats;
 
 /* The result: a triangle mesh (input vertices first) with UVs per corner.
@@ -166,6 +175,8 @@ typedef struct sq_param {
     uint32_t *tri;      /* 3 nf, counterclockwise as in the input          */
     uint32_t *tri_uv;   /* 3 nf: UV index of each corner                   */
     double *uv;         /* 2 nuv                                           */
+    uint32_t *tri_in;   /* nf: the input face holding the triangle (NULL  */
+                        /* where unknown)                                  */
     uint8_t *he_seam;   /* 3 nf: 1 where the edge from corner i to i+1 of  */
                         /* a face is a seam (its two sides have different   */
                         /* UVs)                                            */
@@ -212,6 +223,18 @@ enum {
  * shared/tools/check_param.py; exactness is decided without tolerance
  * (sq_param_io.c explains how). */
 sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err);
+
+/* Removes added vertices of P that lie off its seams, by half-edge
+ * collapses that keep every property sq_param_verify and the referee
+ * check: UV triangles positively oriented (exact predicate), angle sums,
+ * seams and cones untouched (seam vertices do not move), every triangle
+ * inside one input triangle of m (P->tri_in) and positively oriented
+ * there, a closed manifold; and no new triangle more distorted (conformal
+ * ratio) than the worst of the triangles it replaces. Input vertices keep
+ * their indices; faces, added vertices and UVs keep their order.
+ * sq_param_simplify.c explains the rules. m is the input mesh of P;
+ * *removed (may be NULL) receives the vertices removed. */
+sq_status sq_param_simplify(const sq_mesh *m, sq_param *P, uint32_t *removed, sq_error *err);
 
 /* Writes P as OBJ (v, vt, f a/ta b/tb c/tc), atomically (no partial file on
  * error). */

@@ -168,6 +168,18 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     uint32_t threads = o.threads ? o.threads : 1;
     if (threads > n) threads = n;
     st = run_attempts(m, valence, &o, n, alternate, threads, out, stats, err);
+    if (st == SQ_OK && o.simplify != SQ_SIMPLIFY_OFF && !o.allow_flips) {
+        double t = sq_now();
+        stats->faces_unsimplified = out->nf;
+        st = sq_param_simplify(m, out, &stats->simplified, err);
+        if (st) sq_param_free(out);
+        else {
+            stats->verts_out = out->nv, stats->faces_out = out->nf;
+            stats->steiner = out->nv - out->nv_input, stats->nuv = out->nuv;
+            sq_param_distortion(out, stats);
+        }
+        stats->t_simplify = sq_now() - t;
+    }
     stats->t_total = sq_now() - t_start;
     return st;
 }

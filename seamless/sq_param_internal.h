@@ -24,4 +24,8 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
                               const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
                               sq_error *err);
 
+/* The distortion statistics of P into stats (sym_dirichlet_*,
+ * conformal_*; sq_param.c). */
+void sq_param_distortion(const sq_param *P, sq_param_stats *stats);
+
 #endif

@@ -15,6 +15,7 @@ void sq_tsurf_free(sq_tsurf *S)
     free(S->next);
     free(S->twin);
     free(S->f_he);
+    free(S->forig);
     free(S->face);
     free(S->v_he);
     free(S->kind);
@@ -49,6 +50,9 @@ static int grow(sq_tsurf *S, uint32_t need_v, uint32_t need_f, uint32_t need_h)
         uint32_t *t = realloc(S->f_he, (size_t)c * sizeof *t);
         if (!t) return -1;
         S->f_he = t;
+        t = realloc(S->forig, (size_t)c * sizeof *t);
+        if (!t) return -1;
+        S->forig = t;
         S->cap_f = c;
     }
     if (need_h > S->cap_h) {
@@ -91,6 +95,7 @@ int sq_tsurf_copy(sq_tsurf *dst, const sq_tsurf *src)
     memcpy(dst->v_ncut, src->v_ncut, nv * sizeof *dst->v_ncut);
     memcpy(dst->valence, src->valence, nv * sizeof *dst->valence);
     memcpy(dst->f_he, src->f_he, nf * sizeof *dst->f_he);
+    memcpy(dst->forig, src->forig, nf * sizeof *dst->forig);
     memcpy(dst->vert, src->vert, nh * sizeof *dst->vert);
     memcpy(dst->next, src->next, nh * sizeof *dst->next);
     memcpy(dst->face, src->face, nh * sizeof *dst->face);
@@ -126,6 +131,7 @@ sq_status sq_tsurf_from_mesh(const sq_mesh *m, const int32_t *valence, sq_tsurf 
             h = m->he_next[h];
         }
         S->f_he[f] = 3 * f;
+        S->forig[f] = f;
         if (h != m->f_he[f]) {
             free(of);
             return sq_error_set(err, SQ_ERR_ARGUMENT, "face %u is not a triangle", f);
@@ -190,6 +196,7 @@ uint32_t sq_tsurf_split_edge(sq_tsurf *S, uint32_t h, double t)
     S->kind[z0] = S->kind[g], S->label[z0] = S->label[g];
     S->f_he[F1] = y0;
     S->f_he[F2] = z0;
+    S->forig[F1] = S->forig[f], S->forig[F2] = S->forig[f2];
     S->v_he[m] = y0;
     return m;
 }

@@ -44,6 +44,7 @@ typedef struct sq_tsurf {
     uint32_t *next;    /* cap_h                                          */
     uint32_t *twin;    /* cap_h                                          */
     uint32_t *f_he;    /* cap_f: a halfedge of the face                  */
+    uint32_t *forig;   /* cap_f: the input face holding the face         */
     uint32_t *face;    /* cap_h: the face of the halfedge                */
     uint32_t *v_he;    /* cap_v: an outgoing halfedge                    */
     uint8_t *kind;     /* cap_h: SQ_TS_*                                 */

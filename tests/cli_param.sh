@@ -137,7 +137,9 @@ passes_at holes3 111
 # --- --interior overlay: the cut surface and Omega on one disk, their
 # common refinement (no chords, no cells, no rounds): genus 2 (eight),
 # genus 1 (knot1), genus 3 (helmet) ------------------------------------------
-want='j["interior"]=="overlay" and j["chords"]==0 and j["faces_out"] > 20000' passes_at eight 1 --interior overlay
+want='j["interior"]=="overlay" and j["chords"]==0 and j["faces_unsimplified"] > 20000 and 2 * j["faces_out"] < j["faces_unsimplified"]' passes_at eight 1 --interior overlay
+# --simplify off: the map as built (the overlay's 24,148 faces on eight)
+want='j["simplified"]==0 and j["faces_unsimplified"]==0 and j["faces_out"] > 20000' passes_at eight 1 --simplify off
 # the default (auto): the cells, then the overlay, kept where it passes
 # (eight), the cells' map where it does not (sculpt seed 1)
 want='j["interior"]=="overlay" and j["distortion"]["conformal_mean"] < 1000' passes_at eight 1
@@ -269,6 +271,7 @@ expect "--max-steiner 10" 3 "more than 10 Steiner vertices" -- "$knot" --cones "
   --max-steiner 10 --attempts 1
 expect "bad --guide" 2 "guide" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --guide sometimes
 expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --tree random
+expect "bad --simplify" 2 "simplify" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --simplify maybe
 expect "two meshes" 2 "unexpected argument" -- "$knot" "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj"
 expect "same output twice" 2 "two outputs" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --svg "$tmp/e/x.obj"
 expect "missing cones file" 1 "no_such_cones" -- "$knot" --cones "$tmp/no_such_cones" -o "$tmp/e/x.obj"

@@ -1,0 +1,358 @@
+/* seamquad: fewer added vertices in a finished parametrization
+ * (sq_param_simplify; after seed 8's interior map).
+ *
+ * The interior maps add vertices: Steiner vertices of the cuts and the
+ * chords (steps 4-7), and the overlay's crossings and domain vertices
+ * (step 7'), up to 600 times the input's count. Most of them are not needed
+ * for a valid map. This pass removes added vertices that lie off the seams
+ * by half-edge collapses (v into a neighbour w: v's triangles become a fan
+ * at w) that keep every property the map was checked for:
+ *  - UV: every new triangle positively oriented (exact predicate on the
+ *    stored doubles) and the new fan turning less than once around w, so
+ *    that it covers v's old star exactly once: the map stays locally
+ *    injective and the angle sums stay as they were;
+ *  - the refinement of the input: v's triangles lie in one input face (v
+ *    inside it) or in two (v on their common edge; then the collapse must
+ *    run along that edge: the two triangles on the edge v-w lie in
+ *    different input faces); every new triangle is positively oriented
+ *    against its input face's normal (with a margin) and the fan in each
+ *    input face turns less than once, so every triangle still lies in one
+ *    input triangle and the areas still add up;
+ *  - the seams and cones: v has one UV and no seam edge; w, which may be a
+ *    seam, cone or input vertex, does not move;
+ *  - the topology: the link condition (v and w share exactly the two
+ *    neighbours of the edge v-w), so no edge or face is duplicated;
+ *  - the distortion does not get worse there: the largest conformal ratio
+ *    sigma1 / sigma2 among the new triangles is at most the largest among
+ *    v's old ones.
+ * Input vertices keep their indices and positions; added vertices keep
+ * their order; faces keep their order and their input face (tri_in); the UV
+ * array is compacted to the UVs still used.
+ *
+ * The library never prints or exits. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sq_mesh.h"
+#include "sq_param.h"
+#include "sq_param_internal.h"
+#include "sq_predicates.h"
+
+#define MAX_DEGREE 64
+#define TWO_PI 6.283185307179586
+/* new triangles must be this far from degenerate against their input
+ * face's plane: sin(angle at w) in the face, relative */
+#define SIN_MARGIN 1e-7
+
+static uint32_t c_next(uint32_t c) { return c - c % 3 + (c % 3 + 1) % 3; }
+static uint32_t c_prev(uint32_t c) { return c - c % 3 + (c % 3 + 2) % 3; }
+
+typedef struct simp {
+    sq_param *P;
+    const double *nrm; /* 3 per input face: unit normal                 */
+    uint32_t *tw;      /* 3 nf: the twin of halfedge (corner) c          */
+    uint32_t *vc;      /* nv: a corner of the vertex in a live face      */
+    uint8_t *vfree;    /* nv: 1: may be removed                          */
+    uint8_t *fdead;    /* nf                                             */
+    uint32_t *mark;    /* nv: stamps for the link condition              */
+    uint8_t *dirty;    /* nv: 1: in the queue                            */
+    uint32_t *queue;   /* nv: vertices to try (again), a ring buffer     */
+    uint32_t qhead, qlen;
+    uint8_t *link_blocked; /* nv: its last try failed by the link only */
+    int link_failed;
+    uint32_t stamp;
+} simp;
+
+static const double *POS(const simp *s, uint32_t v) { return s->P->pos + 3 * (size_t)v; }
+static const double *UVP(const simp *s, uint32_t t) { return s->P->uv + 2 * (size_t)t; }
+
+static void sub3(const double *a, const double *b, double *r)
+{
+    r[0] = a[0] - b[0], r[1] = a[1] - b[1], r[2] = a[2] - b[2];
+}
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void cross3(const double *a, const double *b, double *r)
+{
+    r[0] = a[1] * b[2] - a[2] * b[1], r[1] = a[2] * b[0] - a[0] * b[2], r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* sigma1/sigma2 + sigma2/sigma1 of the affine map from the 3D triangle
+ * (p0, p1, p2) to the UV triangle (u0, u1, u2): |J|_F^2 / det J, monotone
+ * in the conformal ratio; HUGE_VAL for a degenerate triangle. */
+static double conformal_key(const double *p0, const double *p1, const double *p2, const double *u0,
+                            const double *u1, const double *u2)
+{
+    double e1[3], e2[3], n[3];
+    sub3(p1, p0, e1), sub3(p2, p0, e2), cross3(e1, e2, n);
+    double l1 = sqrt(dot3(e1, e1)), a2 = sqrt(dot3(n, n));
+    if (!(l1 > 0) || !(a2 > 0)) return HUGE_VAL;
+    double ax = l1, bx = dot3(e2, e1) / l1, by = a2 / l1;
+    double d1x = u1[0] - u0[0], d1y = u1[1] - u0[1], d2x = u2[0] - u0[0], d2y = u2[1] - u0[1];
+    double uva2 = d1x * d2y - d1y * d2x;
+    if (!(uva2 > 0)) return HUGE_VAL;
+    double j11 = d1x / ax, j21 = d1y / ax;
+    double j12 = (d2x * ax - d1x * bx) / (ax * by), j22 = (d2y * ax - d1y * bx) / (ax * by);
+    double F = j11 * j11 + j21 * j21 + j12 * j12 + j22 * j22, det = uva2 / a2;
+    return F / det;
+}
+
+/* Angle at a between a->b and a->c (counterclockwise, in (-pi, pi]) in UV */
+static double uv_angle(const double *a, const double *b, const double *c)
+{
+    double x1 = b[0] - a[0], y1 = b[1] - a[1], x2 = c[0] - a[0], y2 = c[1] - a[1];
+    return atan2(x1 * y2 - y1 * x2, x1 * x2 + y1 * y2);
+}
+
+/* The ring of v: corners cs[i] of v, one per face, counterclockwise;
+ * face i is (v, r_i, r_{i+1}) with r_i = tri[next(cs[i])]. Returns the
+ * degree, 0 when over MAX_DEGREE. */
+static uint32_t ring_of(const simp *s, uint32_t v, uint32_t *cs)
+{
+    uint32_t c0 = s->vc[v], c = c0, d = 0;
+    do {
+        if (d == MAX_DEGREE) return 0;
+        cs[d++] = c;
+        c = s->tw[c_prev(c)];
+    } while (c != c0);
+    return d;
+}
+
+static void enqueue(simp *s, uint32_t v)
+{
+    if (!s->vfree[v] || s->dirty[v]) return;
+    s->dirty[v] = 1;
+    s->queue[(s->qhead + s->qlen++) % s->P->nv] = v;
+}
+
+/* Tries the collapse of v into its neighbour r_j (ring cs, degree d;
+ * key_old: the worst conformal key of v's triangles); 1 if done. */
+static int try_collapse(simp *s, uint32_t v, const uint32_t *cs, uint32_t d, uint32_t j, int on_edge,
+                        double key_old)
+{
+    sq_param *P = s->P;
+    const uint32_t jm = (j + d - 1) % d, jp = (j + 1) % d;
+    const uint32_t w = P->tri[c_next(cs[j])], uvw = P->tri_uv[c_next(cs[j])];
+    const double *pw = POS(s, w), *qw = UVP(s, uvw);
+    /* a collapse along an input edge only (see the top) */
+    if (on_edge && P->tri_in[cs[jm] / 3] == P->tri_in[cs[j] / 3]) return 0;
+    /* the new fan at w: UV orientation first (the cheapest test that fails) */
+    for (uint32_t i = 0; i < d; i++)
+        if (i != jm && i != j && sq_orient2d(qw, UVP(s, P->tri_uv[c_next(cs[i])]), UVP(s, P->tri_uv[c_prev(cs[i])])) <= 0)
+            return 0;
+    double key_new = 0, uv_sum = 0, side_sum[2] = {0, 0};
+    uint32_t side_face = P->tri_in[cs[0] / 3];
+    for (uint32_t i = 0; i < d; i++) {
+        if (i == jm || i == j) continue;
+        uint32_t c = cs[i], cn = c_next(c), cp = c_prev(c);
+        const double *pa = POS(s, P->tri[cn]), *pb = POS(s, P->tri[cp]);
+        const double *qa = UVP(s, P->tri_uv[cn]), *qb = UVP(s, P->tri_uv[cp]);
+        /* in the input face's plane */
+        uint32_t f = P->tri_in[c / 3];
+        const double *n = s->nrm + 3 * (size_t)f;
+        double ea[3], eb[3], x[3];
+        sub3(pa, pw, ea), sub3(pb, pw, eb), cross3(ea, eb, x);
+        double sn = dot3(x, n);
+        if (!(sn > SIN_MARGIN * sqrt(dot3(ea, ea) * dot3(eb, eb)))) return 0;
+        double k = conformal_key(pw, pa, pb, qw, qa, qb);
+        if (k > key_old) return 0;
+        if (k > key_new) key_new = k;
+        uv_sum += uv_angle(qw, qa, qb);
+        side_sum[f != side_face] += atan2(sn, dot3(ea, eb));
+    }
+    if (!(uv_sum < TWO_PI * (1 - 1e-9)) || !(side_sum[0] < TWO_PI * (1 - 1e-9)) ||
+        !(side_sum[1] < TWO_PI * (1 - 1e-9)))
+        return 0;
+    /* the link condition: the neighbours of w among v's are r_{j-1}, r_{j+1} */
+    s->stamp++;
+    for (uint32_t i = 0; i < d; i++) s->mark[P->tri[c_next(cs[i])]] = s->stamp;
+    {
+        uint32_t c0 = s->vc[w], c = c0, shared = 0, n = 0;
+        do {
+            if (s->mark[P->tri[c_next(c)]] == s->stamp) shared++;
+            c = s->tw[c_prev(c)];
+        } while (c != c0 && ++n < 100000);
+        if (shared != 2) {
+            s->link_failed = 1;
+            return 0;
+        }
+    }
+    /* do it: faces j-1 = (v, r_{j-1}, w) and j = (v, w, r_{j+1}) go */
+    const uint32_t a = cs[jm], b = cs[j];
+    const uint32_t t1 = s->tw[a], t2 = s->tw[c_next(a)];       /* r_{j-1}->v ; w->r_{j-1} */
+    const uint32_t t3 = s->tw[c_prev(b)], t4 = s->tw[c_next(b)]; /* v->r_{j+1} ; r_{j+1}->w */
+    s->tw[t1] = t2, s->tw[t2] = t1;
+    s->tw[t3] = t4, s->tw[t4] = t3;
+    P->he_seam[t1] = P->he_seam[c_next(a)], P->he_cut[t1] = P->he_cut[c_next(a)];
+    P->he_seam[t3] = P->he_seam[c_next(b)], P->he_cut[t3] = P->he_cut[c_next(b)];
+    for (uint32_t i = 0; i < d; i++)
+        if (i != jm && i != j) P->tri[cs[i]] = w, P->tri_uv[cs[i]] = uvw;
+    s->fdead[a / 3] = s->fdead[b / 3] = 1;
+    s->vc[w] = cs[jp];
+    s->vc[P->tri[t1]] = t1;
+    s->vc[P->tri[t4]] = t4;
+    s->vfree[v] = 0;
+    s->vc[v] = SQ_NONE;
+    /* to be tried again: every vertex whose collapses this may change: w
+     * and its new ring (their stars changed), and the neighbours of those
+     * whose last try failed only by the link condition (their targets'
+     * rings changed; nothing else about them did) */
+    uint32_t c0 = s->vc[w], c = c0;
+    enqueue(s, w);
+    do {
+        uint32_t u = P->tri[c_next(c)], e0 = s->vc[u], e = e0;
+        enqueue(s, u);
+        do {
+            uint32_t x = P->tri[c_next(e)];
+            if (s->link_blocked[x]) enqueue(s, x);
+            e = s->tw[c_prev(e)];
+        } while (e != e0);
+        c = s->tw[c_prev(c)];
+    } while (c != c0);
+    return 1;
+}
+
+/* Tries the vertices in the queue until it is empty (a collapse queues
+ * the vertices whose collapses it may change); returns the collapses. */
+static uint32_t simplify_queue(simp *s)
+{
+    sq_param *P = s->P;
+    uint32_t cs[MAX_DEGREE], order[MAX_DEGREE], done = 0;
+    double len[MAX_DEGREE];
+    while (s->qlen) {
+        uint32_t v = s->queue[s->qhead];
+        s->qhead = (s->qhead + 1) % P->nv, s->qlen--;
+        s->dirty[v] = 0;
+        if (!s->vfree[v]) continue;
+        uint32_t d = ring_of(s, v, cs);
+        if (d < 3) continue;
+        /* v's input faces: one (inside) or two (on their edge) */
+        uint32_t f0 = P->tri_in[cs[0] / 3], f1 = SQ_NONE;
+        int bad = 0;
+        for (uint32_t i = 1; i < d && !bad; i++) {
+            uint32_t f = P->tri_in[cs[i] / 3];
+            if (f == f0 || f == f1) continue;
+            if (f1 == SQ_NONE) f1 = f;
+            else bad = 1;
+        }
+        if (bad) continue;
+        /* the worst of v's triangles; the shortest edges first */
+        double key_old = 0;
+        for (uint32_t i = 0; i < d; i++) {
+            uint32_t c = cs[i], cn = c_next(c), cp = c_prev(c);
+            double k = conformal_key(POS(s, v), POS(s, P->tri[cn]), POS(s, P->tri[cp]), UVP(s, P->tri_uv[c]),
+                                     UVP(s, P->tri_uv[cn]), UVP(s, P->tri_uv[cp]));
+            if (k > key_old) key_old = k;
+            double e[3];
+            sub3(POS(s, P->tri[cn]), POS(s, v), e);
+            len[i] = dot3(e, e);
+            uint32_t m = i;
+            while (m > 0 && len[order[m - 1]] > len[i]) order[m] = order[m - 1], m--;
+            order[m] = i;
+        }
+        s->link_failed = 0;
+        uint32_t k = 0;
+        while (k < d && !try_collapse(s, v, cs, d, order[k], f1 != SQ_NONE, key_old)) k++;
+        if (k < d) done++;
+        else s->link_blocked[v] = (uint8_t)s->link_failed;
+    }
+    return done;
+}
+
+/* Drops dead faces, removed vertices and unused UVs (orders kept). */
+static sq_status compact(simp *s, sq_error *err)
+{
+    sq_param *P = s->P;
+    uint32_t *vnew = malloc((size_t)P->nv * sizeof *vnew), *tnew = malloc((size_t)P->nuv * sizeof *tnew);
+    if (!vnew || !tnew) {
+        free(vnew), free(tnew);
+        return sq_error_set(err, SQ_ERR_NOMEM, "simplify: out of memory");
+    }
+    uint32_t nv = 0, nuv = 0, nf = 0;
+    for (uint32_t v = 0; v < P->nv; v++) vnew[v] = v < P->nv_input || s->vc[v] != SQ_NONE ? nv++ : SQ_NONE;
+    for (uint32_t t = 0; t < P->nuv; t++) tnew[t] = SQ_NONE;
+    for (uint32_t f = 0; f < P->nf; f++)
+        if (!s->fdead[f])
+            for (int i = 0; i < 3; i++) tnew[P->tri_uv[3 * (size_t)f + i]] = 0;
+    for (uint32_t t = 0; t < P->nuv; t++)
+        if (tnew[t] == 0) {
+            tnew[t] = nuv;
+            P->uv[2 * (size_t)nuv] = P->uv[2 * (size_t)t], P->uv[2 * (size_t)nuv + 1] = P->uv[2 * (size_t)t + 1];
+            nuv++;
+        }
+    for (uint32_t v = 0; v < P->nv; v++)
+        if (vnew[v] != SQ_NONE) memmove(P->pos + 3 * (size_t)vnew[v], P->pos + 3 * (size_t)v, 3 * sizeof *P->pos);
+    for (uint32_t f = 0; f < P->nf; f++) {
+        if (s->fdead[f]) continue;
+        for (int i = 0; i < 3; i++) {
+            size_t k = 3 * (size_t)f + i, o = 3 * (size_t)nf + i;
+            P->tri[o] = vnew[P->tri[k]];
+            P->tri_uv[o] = tnew[P->tri_uv[k]];
+            P->he_seam[o] = P->he_seam[k];
+            P->he_cut[o] = P->he_cut[k];
+        }
+        P->tri_in[nf++] = P->tri_in[f];
+    }
+    P->nv = nv, P->nf = nf, P->nuv = nuv;
+    free(vnew), free(tnew);
+    return SQ_OK;
+}
+
+sq_status sq_param_simplify(const sq_mesh *m, sq_param *P, uint32_t *removed, sq_error *err)
+{
+    if (removed) *removed = 0;
+    if (!P->tri_in) return sq_error_set(err, SQ_ERR_ARGUMENT, "simplify: the map has no input faces (tri_in)");
+    if (P->nv_input != m->nv) return sq_error_set(err, SQ_ERR_ARGUMENT, "simplify: the map is not of this mesh (%u input vertices, the mesh has %u)", P->nv_input, m->nv);
+    for (uint32_t f = 0; f < P->nf; f++)
+        if (P->tri_in[f] >= m->nf)
+            return sq_error_set(err, SQ_ERR_ARGUMENT, "simplify: face %u names input face %u of %u", f, P->tri_in[f], m->nf);
+    simp s;
+    memset(&s, 0, sizeof s);
+    s.P = P;
+    sq_mesh hm;
+    sq_status st = sq_param_mesh(P, "simplify", &hm, err);
+    if (st) return st;
+    double *nrm = malloc(3 * (size_t)m->nf * sizeof *nrm);
+    s.tw = malloc(3 * (size_t)P->nf * sizeof *s.tw);
+    s.vc = malloc((size_t)P->nv * sizeof *s.vc);
+    s.vfree = calloc(P->nv, 1);
+    s.fdead = calloc(P->nf, 1);
+    s.mark = calloc(P->nv, sizeof *s.mark);
+    s.dirty = calloc(P->nv, 1);
+    s.queue = malloc((size_t)P->nv * sizeof *s.queue);
+    s.link_blocked = calloc(P->nv, 1);
+    uint32_t *vuv = malloc((size_t)P->nv * sizeof *vuv);
+    if (!nrm || !s.tw || !s.vc || !s.vfree || !s.fdead || !s.mark || !s.dirty || !s.queue || !s.link_blocked || !vuv) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "simplify: out of memory");
+        goto done;
+    }
+    s.nrm = nrm;
+    memcpy(s.tw, hm.he_twin, 3 * (size_t)P->nf * sizeof *s.tw);
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h = m->f_he[f];
+        const double *p0 = m->pos + 3 * (size_t)m->he_vert[h], *p1 = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
+                     *p2 = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
+        double e1[3], e2[3], *n = nrm + 3 * (size_t)f;
+        sub3(p1, p0, e1), sub3(p2, p0, e2), cross3(e1, e2, n);
+        double l = sqrt(dot3(n, n));
+        if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
+    }
+    /* removable: added, one UV, no seam edge */
+    for (uint32_t v = 0; v < P->nv; v++) vuv[v] = SQ_NONE, s.vfree[v] = v >= P->nv_input;
+    for (uint32_t c = 0; c < 3 * P->nf; c++) {
+        uint32_t v = P->tri[c];
+        s.vc[v] = c;
+        if (vuv[v] == SQ_NONE) vuv[v] = P->tri_uv[c];
+        else if (vuv[v] != P->tri_uv[c]) s.vfree[v] = 0;
+        if (P->he_seam[c]) s.vfree[v] = s.vfree[P->tri[c_next(c)]] = 0;
+    }
+    for (uint32_t v = P->nv_input; v < P->nv; v++) enqueue(&s, v);
+    uint32_t total = simplify_queue(&s);
+    st = compact(&s, err);
+    if (st == SQ_OK && removed) *removed = total;
+done:
+    sq_mesh_free(&hm);
+    free(nrm), free(s.tw), free(s.vc), free(s.vfree), free(s.fdead), free(s.mark), free(s.dirty), free(s.queue), free(s.link_blocked);
+    free(vuv);
+    return st;
+}
