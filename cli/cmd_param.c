@@ -125,6 +125,12 @@ static void help(FILE *f)
             "                      wherever every check still holds and no triangle gets\n"
             "                      more distorted (nothing moves; outputs shrink 2 to 13\n"
             "                      times; docs/param.md, step 9); off: the map as built\n"
+            "  --fallback auto|off auto (default): for genus 1, when every attempt fails\n"
+            "                      with the default choices, up to 4 more from the same\n"
+            "                      seed with --guide on --tree pair --interior overlay\n"
+            "                      and a budget of 400 crossings per input face (at most\n"
+            "                      4,500,000): tens of seconds, up to about 1.2 GB, but\n"
+            "                      it passes mpz/elk; off: none\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -248,6 +254,7 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            s->surface_tree ? "true" : "false");
     printf("  \"interior\": \"%s\",\n  \"tree_pair\": %s,\n", s->overlay ? "overlay" : "cells",
            s->tree_pair ? "true" : "false");
+    printf("  \"fallback\": %s,\n", s->fallback ? "true" : "false");
     printf("  \"simplified\": %u,\n  \"faces_unsimplified\": %u,\n", s->simplified, s->faces_unsimplified);
     printf("  \"refine_rounds\": %u,\n  \"cells_halved\": %u,\n", s->rounds, s->cells_refined);
     printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
@@ -312,6 +319,8 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
     if (s->rounds)
         printf("refinement     %u rounds: %u cells with bad triangles halved (step 7c)\n", s->rounds,
                s->cells_refined);
+    if (s->fallback)
+        printf("fallback       genus 1: the default choices failed; guided domain, exact tree, overlay\n");
     if (s->faces_unsimplified)
         printf("simplified     %u added vertices removed: %u faces -> %u\n", s->simplified,
                s->faces_unsimplified, s->faces_out);
@@ -409,7 +418,7 @@ int sq_cmd_param(int argc, char **argv)
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     unsigned long long threads = ncpu > 1 ? 2 : 1;
     int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE, interior = SQ_INTERIOR_AUTO;
-    int simplify = SQ_SIMPLIFY_ON;
+    int simplify = SQ_SIMPLIFY_ON, fallback = SQ_FALLBACK_AUTO;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -467,6 +476,14 @@ int sq_cmd_param(int argc, char **argv)
                 fprintf(stderr, "seamquad param: --simplify takes on or off, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
+        } else if (!strcmp(a, "--fallback") && has) {
+            const char *arg = argv[++i];
+            if (!strcmp(arg, "auto")) fallback = SQ_FALLBACK_AUTO;
+            else if (!strcmp(arg, "off")) fallback = SQ_FALLBACK_OFF;
+            else {
+                fprintf(stderr, "seamquad param: --fallback takes auto or off, got '%s'\n", arg);
+                return SQ_EXIT_USAGE;
+            }
         } else if (!strcmp(a, "--guide") && has) {
             const char *arg = argv[++i];
             if (!strcmp(arg, "auto")) guidance = SQ_GUIDE_AUTO;
@@ -513,6 +530,7 @@ int sq_cmd_param(int argc, char **argv)
     opt.tree = tree;
     opt.interior = interior;
     opt.simplify = simplify;
+    opt.fallback = fallback;
     opt.progress = on_progress;
     opt.progress_ctx = &ps;
     sq_error err;

@@ -89,10 +89,23 @@ typedef struct sq_param_options {
      * (sq_param_simplify: added vertices off the seams removed where every
      * check still holds); SQ_SIMPLIFY_OFF: the map as built. */
     int simplify;
+    /* SQ_FALLBACK_AUTO (default): for genus 1 with the other choices at
+     * their defaults, when every attempt fails on the map (SQ_ERR_SOLVER),
+     * up to 4 more attempts (from the same seed, one at a time) with the
+     * guided domain, the exact plane tree and the overlay (SQ_GUIDE_ON,
+     * SQ_TREE_PAIR, SQ_INTERIOR_OVERLAY) and a crossing budget of 400 per
+     * input face (at most 4,500,000; max_steiner, when given, instead):
+     * slow (tens of seconds) but it passes mpz/elk, which nothing else
+     * does (docs/param.md). SQ_FALLBACK_OFF: none. */
+    int fallback;
 } sq_param_options;
 
 enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2 };
 enum { SQ_SIMPLIFY_ON = 0, SQ_SIMPLIFY_OFF = 1 };
+enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
+#define SQ_FALLBACK_ATTEMPTS 4
+#define SQ_FALLBACK_PER_FACE 400u
+#define SQ_FALLBACK_MAX_CROSSINGS 4500000u
 
 #define SQ_PARAM_REFINE 8
 
@@ -157,6 +170,8 @@ typedef struct sq_param_stats {
     int surface_tree;                       /* 1: the seed 9.4 surface tree   */
     int overlay;                            /* 1: interior map by overlay     */
     int tree_pair;                          /* 1: SQ_TREE_PAIR's exact copy   */
+    int fallback;                           /* 1: the genus-1 fallback made   */
+                                            /* it (SQ_FALLBACK_AUTO)          */
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
     double t_overlay; /* step 7' (after the cells by default; kept or not) */

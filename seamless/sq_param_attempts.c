@@ -146,10 +146,59 @@ static sq_status run_attempts(const sq_mesh *m, const int32_t *valence, const sq
     return st;
 }
 
+/* The genus-1 fallback (SQ_FALLBACK_AUTO): only where the caller left
+ * the choices it overrides at their defaults. */
+static int uses_fallback(const sq_param_options *o, int64_t genus)
+{
+    return genus == 1 && o->fallback == SQ_FALLBACK_AUTO && o->guidance == SQ_GUIDE_AUTO &&
+           o->tree == SQ_TREE_SURFACE && o->interior == SQ_INTERIOR_AUTO && !o->allow_flips;
+}
+
+/* After the n attempts with the default choices failed (err says why):
+ * the guided domain (seed 9.2 per piece), the exact plane tree and the
+ * overlay, whose map the torus's cells could not give (mpz/elk: the
+ * unguided tree and the guided surface tree both make the surface wind
+ * around Q's tree; docs/param.md). One attempt at a time: each may hold a
+ * gigabyte. */
+static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
+                              uint32_t n, sq_param *out, sq_param_stats *stats, sq_error *err)
+{
+    sq_param_options f = *o;
+    f.guidance = SQ_GUIDE_ON, f.tree = SQ_TREE_PAIR, f.interior = SQ_INTERIOR_OVERLAY;
+    f.threads = 1;
+    f.attempts = n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS;
+    if (!f.max_steiner) {
+        uint64_t base = 9u * (uint64_t)m->nv + 100000u, per = SQ_FALLBACK_PER_FACE * (uint64_t)m->nf;
+        if (per > SQ_FALLBACK_MAX_CROSSINGS) per = SQ_FALLBACK_MAX_CROSSINGS;
+        f.max_steiner = per > base ? per : base;
+    }
+    if (o->progress) o->progress(o->progress_ctx, "genus-1 fallback: guided domain, exact tree, overlay", 0.0);
+    char first[sizeof err->msg];
+    memcpy(first, err->msg, sizeof first);
+    sq_param_stats fs;
+    memset(&fs, 0, sizeof fs);
+    sq_status st = run_attempts(m, valence, &f, f.attempts, 0, 1, out, &fs, err);
+    if (st == SQ_OK) {
+        fs.attempts += n;
+        fs.fallback = 1;
+        *stats = fs;
+        return SQ_OK;
+    }
+    if (st != SQ_ERR_SOLVER) return st;
+    char second[sizeof err->msg];
+    memcpy(second, err->msg, sizeof second);
+    return sq_error_set(err, SQ_ERR_SOLVER,
+                        "%s; the genus-1 fallback (guided domain, exact tree, overlay; %u attempts) failed "
+                        "too: %s",
+                        first, f.attempts, second);
+}
+
 sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
                          sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     double t_start = sq_now();
+    sq_error local_err;
+    if (!err) err = &local_err;
     sq_param_options o;
     if (opt) o = *opt;
     else sq_param_options_default(&o);
@@ -168,6 +217,8 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     uint32_t threads = o.threads ? o.threads : 1;
     if (threads > n) threads = n;
     st = run_attempts(m, valence, &o, n, alternate, threads, out, stats, err);
+    if (st == SQ_ERR_SOLVER && uses_fallback(&o, sq_mesh_genus(m)))
+        st = run_fallback(m, valence, &o, n, out, stats, err);
     if (st == SQ_OK && o.simplify != SQ_SIMPLIFY_OFF && !o.allow_flips) {
         double t = sq_now();
         stats->faces_unsimplified = out->nf;
