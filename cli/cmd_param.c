@@ -95,6 +95,8 @@ static void help(FILE *f)
             "  --max-steiner N     Steiner vertices allowed per attempt (default 9 per\n"
             "                      input vertex + 100000); an attempt that needs more\n"
             "                      gives up (and the next seed is tried)\n"
+            "  --max-crossings N   crossings of surface and domain edges the overlay may\n"
+            "                      make (default: the Steiner budget)\n"
             "  --diagnose OUT.svg  when the map fails its orientation check: the last\n"
             "                      attempt is rebuilt keeping its flips, and the cells of\n"
             "                      Omega holding bad triangles are drawn on the surface and\n"
@@ -108,7 +110,9 @@ static void help(FILE *f)
             "                      shortest tree (passes less often, less distortion when\n"
             "                      it does); alternate tries both on each cut-graph seed;\n"
             "                      pair (experimental) grows both trees at once as one\n"
-            "                      plane tree, Q refined where it has no room\n"
+            "                      plane tree, Q refined where it has no room (where\n"
+            "                      that fails: the surface tree); pair-exact: the same,\n"
+            "                      but the attempt fails where the exact tree does\n"
             "  --interior MODE     the interior map: cells cuts Omega into rectangles by\n"
             "                      chords replayed on the surface and maps each cell by\n"
             "                      Tutte (with --refine rounds); overlay maps the cut\n"
@@ -119,7 +123,9 @@ static void help(FILE *f)
             "                      Steiner vertex, and where the domain's shape is far\n"
             "                      from the surface's they exceed --max-steiner; auto\n"
             "                      (default): cells, then the overlay on the same cuts,\n"
-            "                      whose map is kept when it passes (docs/param.md, 7')\n"
+            "                      whose map is kept when it passes (docs/param.md, 7');\n"
+            "                      overlay tries Omega in unit squares, then in its\n"
+            "                      chords' rectangles; overlay-chords the other way\n"
             "  --simplify on|off   on (default): the map that passed is simplified: added\n"
             "                      vertices off the seams are removed by edge collapses\n"
             "                      wherever every check still holds and no triangle gets\n"
@@ -127,10 +133,10 @@ static void help(FILE *f)
             "                      times; docs/param.md, step 9); off: the map as built\n"
             "  --fallback auto|off auto (default): for genus 1, when every attempt fails\n"
             "                      with the default choices, up to 4 more from the same\n"
-            "                      seed with --guide on --tree pair --interior overlay\n"
-            "                      and a budget of 400 crossings per input face (at most\n"
-            "                      4,500,000): tens of seconds, up to about 1.2 GB, but\n"
-            "                      it passes mpz/elk; off: none\n"
+            "                      seed with --guide on --tree pair-exact --interior\n"
+            "                      overlay-chords and a budget of 400 crossings per\n"
+            "                      input face (at most 4,500,000): tens of seconds, up\n"
+            "                      to about 1.2 GB, but it passes mpz/elk; off: none\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -415,6 +421,7 @@ int sq_cmd_param(int argc, char **argv)
     int json = 0, quiet = 0;
     const char *diagnose = NULL;
     unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS, refine = SQ_PARAM_REFINE, max_steiner = 0;
+    unsigned long long max_crossings = 0;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     unsigned long long threads = ncpu > 1 ? 2 : 1;
     int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE, interior = SQ_INTERIOR_AUTO;
@@ -449,14 +456,17 @@ int sq_cmd_param(int argc, char **argv)
             if (!u64_option(a, argv[++i], 0, 64, &refine)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--max-steiner") && has) {
             if (!u64_option(a, argv[++i], 1, 1000000000ull, &max_steiner)) return SQ_EXIT_USAGE;
+        } else if (!strcmp(a, "--max-crossings") && has) {
+            if (!u64_option(a, argv[++i], 1, 1000000000ull, &max_crossings)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--tree") && has) {
             const char *arg = argv[++i];
             if (!strcmp(arg, "alternate")) tree = SQ_TREE_ALTERNATE;
             else if (!strcmp(arg, "surface")) tree = SQ_TREE_SURFACE;
             else if (!strcmp(arg, "domain")) tree = SQ_TREE_DOMAIN;
             else if (!strcmp(arg, "pair")) tree = SQ_TREE_PAIR;
+            else if (!strcmp(arg, "pair-exact")) tree = SQ_TREE_PAIR_EXACT;
             else {
-                fprintf(stderr, "seamquad param: --tree takes alternate, surface, domain or pair, got '%s'\n", arg);
+                fprintf(stderr, "seamquad param: --tree takes alternate, surface, domain, pair or pair-exact, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--interior") && has) {
@@ -464,8 +474,9 @@ int sq_cmd_param(int argc, char **argv)
             if (!strcmp(arg, "auto")) interior = SQ_INTERIOR_AUTO;
             else if (!strcmp(arg, "cells")) interior = SQ_INTERIOR_CELLS;
             else if (!strcmp(arg, "overlay")) interior = SQ_INTERIOR_OVERLAY;
+            else if (!strcmp(arg, "overlay-chords")) interior = SQ_INTERIOR_OVERLAY_CHORDS;
             else {
-                fprintf(stderr, "seamquad param: --interior takes auto, cells or overlay, got '%s'\n", arg);
+                fprintf(stderr, "seamquad param: --interior takes auto, cells, overlay or overlay-chords, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--simplify") && has) {
@@ -526,6 +537,7 @@ int sq_cmd_param(int argc, char **argv)
     opt.threads = (uint32_t)threads;
     opt.refine = (uint32_t)refine;
     opt.max_steiner = max_steiner;
+    opt.max_crossings = max_crossings;
     opt.guidance = guidance;
     opt.tree = tree;
     opt.interior = interior;

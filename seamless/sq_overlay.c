@@ -392,6 +392,7 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
             }
             if (n == 0) continue;
             npieces++;
+            if (max_crossings && out->nx > max_crossings) break; /* reported below */
             for (uint32_t i = 0; i < 3; i++) {
                 uint32_t tw = A->twin[3 * fa + i];
                 if (tw == SQ_NONE || mark[tw / 3] == g) continue;

@@ -405,10 +405,12 @@ static sq_status guided_tree(ctx *c)
         if (r > best) best = r, rs = j;
     }
     /* SQ_TREE_PAIR: seed 9.4 on both disks at once, as one plane tree
-     * (sq_guide_tree_pair); where that fails, as SQ_TREE_SURFACE */
+     * (sq_guide_tree_pair); where that fails, as SQ_TREE_SURFACE
+     * (SQ_TREE_PAIR_EXACT: the attempt fails) */
     for (uint32_t j = 0; qs && qf && j < n1; j++) qs[j] = SQ_NONE, qf[j] = 0;
     sq_domain *saved = c->D;
-    if (st == SQ_OK && c->opt->tree == SQ_TREE_PAIR) {
+    const int pair = c->opt->tree == SQ_TREE_PAIR || c->opt->tree == SQ_TREE_PAIR_EXACT;
+    if (st == SQ_OK && pair) {
         /* where Q's grid has no room for a path, the same at twice the
          * resolution (up to TREE_REFINE times; Q's vertices keep their
          * indices, so qv stays) */
@@ -467,7 +469,13 @@ static sq_status guided_tree(ctx *c)
             sq_domain_free(cur);
             free(cur);
         }
-        if (st == SQ_ERR_SOLVER) st = SQ_OK;
+        if (st == SQ_ERR_SOLVER && c->opt->tree == SQ_TREE_PAIR_EXACT) {
+            char why[sizeof c->err->msg];
+            memcpy(why, c->err->msg, sizeof why);
+            st = sq_error_set(c->err, SQ_ERR_SOLVER, "the exact plane tree (tree pair-exact) failed: %s", why);
+        } else if (st == SQ_ERR_SOLVER) {
+            st = SQ_OK;
+        }
     }
     /* else the surface tree first, Q's following it near the same places */
     if (st == SQ_OK && !c->tree_exact)
@@ -618,7 +626,10 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     st = SQ_ERR_SOLVER;
     if (c->step_vertex && c->opt->tree != SQ_TREE_DOMAIN) st = guided_tree(c);
     if (st_out) st_out->surface_tree = st == SQ_OK;
-    if (st == SQ_ERR_SOLVER) st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
+    /* the surface tree could not be copied: Q's own tree, unless the exact
+     * copy was asked for (SQ_TREE_PAIR_EXACT: the attempt fails) */
+    if (st == SQ_ERR_SOLVER && !(c->step_vertex && c->opt->tree == SQ_TREE_PAIR_EXACT))
+        st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
     if (st == SQ_OK) st = sq_omega_build(c->D, c->T, c->O, err);
     if (st == SQ_OK && c->s_tree_next && !c->tree_exact) st = guided_root(c);
     if (st) goto done;
@@ -2761,7 +2772,8 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     if (st) goto done;
     sq_overlay_mesh Am = {S->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
     progress(c, "overlay", 0.75);
-    st = sq_overlay_build(nbl, na, nv, xy, &Am, &Bm, steiner_budget(c), &X, err);
+    st = sq_overlay_build(nbl, na, nv, xy, &Am, &Bm, c->opt->max_crossings ? c->opt->max_crossings : steiner_budget(c),
+                          &X, err);
     if (st) goto done;
     /* the output: S's vertices, then B's interior vertices, then the crossings */
     uint32_t nout = S->nv + (nv - na) + X.nx;
@@ -2856,10 +2868,12 @@ done:
 
 /* Step 7': the cut surface on the disk once, then Omega triangulated in
  * its unit squares, and where that fails (over the budget, mostly) and
- * `rectangles` is set, in the rectangles of its chords: fewer edges for
- * the surface to cross where Omega is large against the surface (femur,
+ * `rectangles` is 1, in the rectangles of its chords: fewer edges for the
+ * surface to cross where Omega is large against the surface (femur,
  * rocker_arm, elk with guidance), more where it is not (fandisk, eight,
- * cup, helmet), hence second (docs/param.md, step 7'). */
+ * cup, helmet), hence second (docs/param.md, step 7'). rectangles 2
+ * (SQ_INTERIOR_OVERLAY_CHORDS): the rectangles first, the squares second
+ * (elk's fallback: its squares always fail after seconds). */
 static sq_status overlay_map(ctx *c, const int32_t *valence, int rectangles, sq_param *P,
                              sq_param_stats *stats)
 {
@@ -2869,18 +2883,19 @@ static sq_status overlay_map(ctx *c, const int32_t *valence, int rectangles, sq_
     if (!oseq) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     surface_disk A;
     memset(&A, 0, sizeof A);
+    sq_omega_cells C;
+    sq_omega_cells_init(&C);
     sq_status st = omega_boundary(W, oseq) == SQ_NONE
                        ? sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", W->nbnd)
                        : surface_disk_build(c, oseq, &A);
-    if (st == SQ_OK) st = overlay_with(c, &A, oseq, NULL, valence, P, stats);
+    if (st == SQ_OK && rectangles) st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
+    const sq_omega_cells *first = rectangles == 2 ? &C : NULL, *second = rectangles == 2 ? NULL : &C;
+    if (st == SQ_OK) st = overlay_with(c, &A, oseq, first, valence, P, stats);
     if (st == SQ_ERR_SOLVER && rectangles) {
         sq_param_free(P);
-        sq_omega_cells C;
-        sq_omega_cells_init(&C);
-        st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
-        if (st == SQ_OK) st = overlay_with(c, &A, oseq, &C, valence, P, stats);
-        sq_omega_cells_free(&C);
+        st = overlay_with(c, &A, oseq, second, valence, P, stats);
     }
+    sq_omega_cells_free(&C);
     surface_disk_free(&A);
     free(oseq);
     return st;
@@ -2988,10 +3003,12 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     st = boundary_map(&c);
     if (st) goto done;
     double t2 = sq_now(), t_round = t2, t3 = t2, t4, t_overlay = 0; /* t_round: the last round's start */
-    if (opt->interior == SQ_INTERIOR_OVERLAY) { /* step 7' instead of 6-7c */
+    if (opt->interior == SQ_INTERIOR_OVERLAY || opt->interior == SQ_INTERIOR_OVERLAY_CHORDS) {
+        /* step 7' instead of 6-7c */
         progress(&c, "disk maps", 0.55);
         stats->overlay = 1;
-        st = overlay_map(&c, valence, 1, out, stats); /* checks every triangle too */
+        /* checks every triangle too */
+        st = overlay_map(&c, valence, opt->interior == SQ_INTERIOR_OVERLAY ? 1 : 2, out, stats);
         if (st) goto done;
         t4 = sq_now();
         goto finish;
@@ -3058,7 +3075,7 @@ finish:
     stats->t_tutte = t4 - t3;
     stats->t_check = t5 - t4 - t_overlay;
     stats->t_overlay = t_overlay;
-    if (opt->interior == SQ_INTERIOR_OVERLAY) /* step 7' alone: no Tutte of cells */
+    if (stats->overlay && opt->interior != SQ_INTERIOR_AUTO) /* step 7' alone: no Tutte of cells */
         stats->t_overlay = stats->t_tutte, stats->t_tutte = 0;
     stats->t_total = t5 - t_start;
     progress(&c, "done", 1.0);

@@ -73,6 +73,9 @@ typedef struct sq_param_options {
     /* Steiner vertices allowed before an attempt gives up (SQ_ERR_SOLVER);
      * 0: 9 per input vertex + 100000. */
     uint64_t max_steiner;
+    /* Crossings of surface and domain edges the overlay (step 7') may make
+     * before it gives up (SQ_ERR_SOLVER); 0: the Steiner budget above. */
+    uint64_t max_crossings;
     /* Attempts run at once, each in its own thread (default 1; 0 counts
      * as 1). The result is the same as with 1: the lowest attempt that
      * passes (later ones are cancelled, earlier ones awaited); memory grows
@@ -93,14 +96,19 @@ typedef struct sq_param_options {
      * their defaults, when every attempt fails on the map (SQ_ERR_SOLVER),
      * up to 4 more attempts (from the same seed, one at a time) with the
      * guided domain, the exact plane tree and the overlay (SQ_GUIDE_ON,
-     * SQ_TREE_PAIR, SQ_INTERIOR_OVERLAY) and a crossing budget of 400 per
-     * input face (at most 4,500,000; max_steiner, when given, instead):
-     * slow (tens of seconds) but it passes mpz/elk, which nothing else
-     * does (docs/param.md). SQ_FALLBACK_OFF: none. */
+     * SQ_TREE_PAIR_EXACT, SQ_INTERIOR_OVERLAY_CHORDS), the same Steiner
+     * budget and a crossing budget of 400 per input face (at most
+     * 4,500,000; max_crossings, when given, instead): slow (tens of
+     * seconds) but it passes mpz/elk, which nothing else does
+     * (docs/param.md). SQ_FALLBACK_OFF: none. */
     int fallback;
 } sq_param_options;
 
-enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2 };
+/* SQ_INTERIOR_OVERLAY triangulates Omega in its unit squares, and where
+ * that fails in its chords' rectangles; SQ_INTERIOR_OVERLAY_CHORDS the
+ * other way round (fewer triangles where Omega is large against the
+ * surface, as after the exact tree's 2 x 2 refinements; docs/param.md). */
+enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2, SQ_INTERIOR_OVERLAY_CHORDS = 3 };
 enum { SQ_SIMPLIFY_ON = 0, SQ_SIMPLIFY_OFF = 1 };
 enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
 #define SQ_FALLBACK_ATTEMPTS 4
@@ -122,8 +130,11 @@ enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
  *    surface path's end copied exactly in Q (refined 2 x 2 where its grid
  *    has no room; sq_guide_tree_pair), so the surface tree needs no
  *    Steiner vertex; where that fails, as SQ_TREE_SURFACE. Experimental:
- *    it makes mpz/elk pass with the overlay (docs/param.md). */
-enum { SQ_TREE_SURFACE = 0, SQ_TREE_DOMAIN = 1, SQ_TREE_ALTERNATE = 2, SQ_TREE_PAIR = 3 };
+ *    it makes mpz/elk pass with the overlay (docs/param.md);
+ *  SQ_TREE_PAIR_EXACT: the same, but where the exact copy fails the
+ *    attempt fails (SQ_ERR_SOLVER): the genus-1 fallback's choice, whose
+ *    overlay has no chance on the surface tree's winding paths. */
+enum { SQ_TREE_SURFACE = 0, SQ_TREE_DOMAIN = 1, SQ_TREE_ALTERNATE = 2, SQ_TREE_PAIR = 3, SQ_TREE_PAIR_EXACT = 4 };
 
 /* Guidance modes (sq_param_options.guidance):
  *  SQ_GUIDE_AUTO: SQ_GUIDE_ON for genus >= 2, SQ_GUIDE_OFF below (where

@@ -164,13 +164,16 @@ static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq
                               uint32_t n, sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     sq_param_options f = *o;
-    f.guidance = SQ_GUIDE_ON, f.tree = SQ_TREE_PAIR, f.interior = SQ_INTERIOR_OVERLAY;
+    f.guidance = SQ_GUIDE_ON, f.tree = SQ_TREE_PAIR_EXACT, f.interior = SQ_INTERIOR_OVERLAY_CHORDS;
     f.threads = 1;
     f.attempts = n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS;
-    if (!f.max_steiner) {
-        uint64_t base = 9u * (uint64_t)m->nv + 100000u, per = SQ_FALLBACK_PER_FACE * (uint64_t)m->nf;
+    /* the Steiner budget of the cuts stays (an attempt whose tree winds
+     * fails there, early); the overlay may cross more */
+    if (!f.max_crossings) {
+        uint64_t base = f.max_steiner ? f.max_steiner : 9u * (uint64_t)m->nv + 100000u;
+        uint64_t per = SQ_FALLBACK_PER_FACE * (uint64_t)m->nf;
         if (per > SQ_FALLBACK_MAX_CROSSINGS) per = SQ_FALLBACK_MAX_CROSSINGS;
-        f.max_steiner = per > base ? per : base;
+        f.max_crossings = per > base ? per : base;
     }
     if (o->progress) o->progress(o->progress_ctx, "genus-1 fallback: guided domain, exact tree, overlay", 0.0);
     char first[sizeof err->msg];

@@ -279,9 +279,13 @@ expect "bad --refine" 2 "refine" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.o
 expect "bad --max-steiner" 2 "max-steiner" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-steiner 0
 # a Steiner budget the cut cannot keep: a clean failure that names it
 expect "--max-steiner 10" 3 "more than 10 Steiner vertices" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
-  --max-steiner 10 --attempts 1
+  --max-steiner 10 --attempts 1 --fallback off
 expect "bad --guide" 2 "guide" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --guide sometimes
 expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --tree random
+# a crossing budget the overlay cannot keep: a clean failure that names it
+expect "--max-crossings 100" 3 "more than 100 crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
+  --interior overlay-chords --max-crossings 100 --attempts 1
+expect "bad --max-crossings" 2 "max-crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-crossings 0
 expect "bad --fallback" 2 "fallback" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --fallback always
 expect "bad --simplify" 2 "simplify" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --simplify maybe
 expect "two meshes" 2 "unexpected argument" -- "$knot" "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj"
