@@ -162,6 +162,9 @@ fi
 want='j["guided"] and j["tree_pair"]' passes_at eight 1 --tree pair
 want='j["tree_pair"] and j["interior"]=="overlay"' passes_at holes3 1 --tree pair
 want='not j["tree_pair"]' passes_at eight 1
+# --tree pair-exact with --interior overlay-chords (the fallback's choices)
+# on eight: the exact tree, Omega's rectangles first
+want='j["tree_pair"] and j["interior"]=="overlay"' passes_at eight 1 --tree pair-exact --interior overlay-chords
 
 # --- the genus-1 fallback (default --fallback auto): mpz/elk, where every
 # attempt with the default choices fails, passes with the guided domain, the
@@ -286,6 +289,10 @@ expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" 
 expect "--max-crossings 100" 3 "more than 100 crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
   --interior overlay-chords --max-crossings 100 --attempts 1
 expect "bad --max-crossings" 2 "max-crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-crossings 0
+# where the exact tree cannot be built, pair-exact fails the attempt (no
+# fallback to Q's own tree): helmet at seed 1, a cone walled in by the cut
+expect "--tree pair-exact" 3 "exact plane tree (tree pair-exact) failed" -- "$shared/data/mpz/helmet.obj" \
+  --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/e/x.obj" --tree pair-exact --attempts 1
 expect "bad --fallback" 2 "fallback" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --fallback always
 expect "bad --simplify" 2 "simplify" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --simplify maybe
 expect "two meshes" 2 "unexpected argument" -- "$knot" "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj"
