@@ -7,8 +7,10 @@
  * of A and the face of B it names, the areas add up to the polygon's
  * (nothing covered twice, nothing missed), the mesh is closed along
  * interior edges (every interior halfedge has its twin), and every
- * interior vertex is located in a face that holds it. Seeded;
- * SQ_LONG_TESTS=1 runs many more pairs. */
+ * interior vertex is located in a face that holds it; a crossing budget
+ * of exactly the crossings made gives the same overlay, one less fails
+ * cleanly (SQ_ERR_SOLVER, nothing kept). Seeded; SQ_LONG_TESTS=1 runs many
+ * more pairs. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -144,8 +146,19 @@ static uint32_t check_pair(uint32_t n)
             assert_true(fabs(l[0] * xy[2 * t[0] + d] + l[1] * xy[2 * t[1] + d] + l[2] * xy[2 * t[2] + d] - xy[2 * v + d]) < 1e-9);
         assert_true(l[0] > 0 && l[1] > 0 && l[2] > 0);
     }
-    uint32_t nx = X.nx;
+    uint32_t nx = X.nx, ntri = X.ntri;
     sq_overlay_free(&X);
+    /* the crossing budget: exactly enough passes with the same overlay;
+     * one less fails cleanly (SQ_ERR_SOLVER naming it, nothing kept) */
+    if (nx > 1) { /* (a budget of 0 means none) */
+        assert_int_equal(sq_overlay_build(n, na, nv, xy, &A, &B, nx, &X, &err), SQ_OK);
+        assert_true(X.nx == nx && X.ntri == ntri);
+        sq_overlay_free(&X);
+        assert_int_equal(sq_overlay_build(n, na, nv, xy, &A, &B, nx - 1, &X, &err), SQ_ERR_SOLVER);
+        assert_non_null(strstr(err.msg, "crossings"));
+        assert_true(X.tri == NULL && X.nx == 0 && X.ntri == 0);
+        sq_overlay_free(&X);
+    }
     free(p), free(xy), free(ta), free(wa), free(tb), free(wb);
     return nx;
 }
