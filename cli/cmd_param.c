@@ -64,6 +64,10 @@ static void help(FILE *f)
             "                      per seam curve, cones by valence\n"
             "  --domain-svg OUT.svg  picture of the flat domain Omega: Q's sides, the cone\n"
             "                      tree, cone copies and branch points (seed Fig. 1)\n"
+            "  --cut-svg OUT.svg   picture of the cut on the surface: the input mesh in\n"
+            "                      three views with the seams (cut graph and cone tree),\n"
+            "                      cones and branch points (about 200 bytes per input\n"
+            "                      triangle)\n"
             "  --seed N            seed of the cut graph's sampling (default 1): another\n"
             "                      seed gives another valid parametrization\n"
             "  --attempts N        tries before giving up (default %d): when a map fails\n"
@@ -182,7 +186,7 @@ static void on_progress(void *ctx, const char *stage, double fraction)
 
 /* Outputs: each is written to a hidden staging file next to its target,
  * and all are renamed over their targets only when every one is complete. */
-enum { OUT_OBJ, OUT_SVG, OUT_DOMAIN_SVG, NOUT };
+enum { OUT_OBJ, OUT_SVG, OUT_DOMAIN_SVG, OUT_CUT_SVG, NOUT };
 
 typedef struct output {
     const char *path;
@@ -444,6 +448,8 @@ int sq_cmd_param(int argc, char **argv)
             out[OUT_SVG].path = argv[++i];
         } else if (!strcmp(a, "--domain-svg") && has) {
             out[OUT_DOMAIN_SVG].path = argv[++i];
+        } else if (!strcmp(a, "--cut-svg") && has) {
+            out[OUT_CUT_SVG].path = argv[++i];
         } else if (!strcmp(a, "--diagnose") && has) {
             diagnose = argv[++i];
         } else if (!strcmp(a, "--seed") && has) {
@@ -601,9 +607,10 @@ int sq_cmd_param(int argc, char **argv)
             sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
             goto fail;
         }
-        sq_status st = i == OUT_OBJ   ? sq_param_write_obj(out[i].stage, &P, &err)
-                       : i == OUT_SVG ? sq_param_write_svg(out[i].stage, &P, &err)
-                                      : write_domain_svg(&P, out[i].stage, &err);
+        sq_status st = i == OUT_OBJ       ? sq_param_write_obj(out[i].stage, &P, &err)
+                       : i == OUT_SVG     ? sq_param_write_svg(out[i].stage, &P, &err)
+                       : i == OUT_CUT_SVG ? sq_param_write_cut_svg(out[i].stage, &mesh, &P, &err)
+                                          : write_domain_svg(&P, out[i].stage, &err);
         if (st) {
             /* name the user's file, not the staging file */
             char msg[2 * SQ_ERROR_MSG_MAX];

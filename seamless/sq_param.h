@@ -270,6 +270,13 @@ sq_status sq_param_write_obj(const char *path, const sq_param *P, sq_error *err)
  * cone points by valence. */
 sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err);
 
+/* SVG of the cut on the surface (sq_param_cut_svg.c): the input mesh m
+ * in three orthographic views (front, side, top), shaded and drawn back to
+ * front, with P's seams (the cut graph and the cone tree: he_cut 1) where
+ * they are visible, cones by valence and the seams' branch points.
+ * Written atomically. */
+sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_param *P, sq_error *err);
+
 /* Diagnosis of a map that failed its orientation check (built with
  * sq_param_options.allow_flips; sq_param_cells.c): the cells of Omega on
  * the surface (faces joined across edges with he_cut 0), those holding

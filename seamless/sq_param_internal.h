@@ -24,6 +24,9 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
                               const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
                               sq_error *err);
 
+/* The colour of a cone of valence k in the pictures (sq_param_io.c). */
+const char *sq_param_valence_colour(int32_t k);
+
 /* The distortion statistics of P into stats (sym_dirichlet_*,
  * conformal_*; sq_param.c). */
 void sq_param_distortion(const sq_param *P, sq_param_stats *stats);

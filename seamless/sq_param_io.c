@@ -554,7 +554,7 @@ static const char *curve_colour(uint32_t i)
     return c[i % (sizeof c / sizeof c[0])];
 }
 
-static const char *valence_colour(int32_t k)
+const char *sq_param_valence_colour(int32_t k)
 {
     switch (k) {
     case 2: return "#b2182b";
@@ -671,7 +671,7 @@ sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err)
         const double *p = UV(P, t);
         fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"%s\"><title>cone vertex %" PRIu32
                    ", valence %" PRId32 ", at (%.6g, %.6g)</title></circle>\n",
-                SX(&F, p), SY(&F, p), valence_colour(P->valence[v]), v, P->valence[v], p[0], p[1]);
+                SX(&F, p), SY(&F, p), sq_param_valence_colour(P->valence[v]), v, P->valence[v], p[0], p[1]);
     }
     fprintf(f, "</g>\n");
     /* legend */
@@ -682,7 +682,7 @@ sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err)
         fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"%s\" stroke=\"black\" "
                    "stroke-width=\"0.5\"/><text x=\"%.0f\" y=\"%.0f\">valence %s%" PRId32
                    ": %" PRIu32 "</text>\n",
-                x + 4, y - 4, valence_colour(k), x + 12, y, k == 8 ? "&gt;=" : "", k, hist[k]);
+                x + 4, y - 4, sq_param_valence_colour(k), x + 12, y, k == 8 ? "&gt;=" : "", k, hist[k]);
         x += 110;
     }
     fprintf(f, "<text x=\"%.0f\" y=\"%.0f\">grey: triangles; coloured: seams, one colour per seam "

@@ -35,12 +35,12 @@ while IFS=$'\t' read -r file _ _ _ _ _ _ closed genus cones _; do
   cfile=$(dirname "$mesh")/$cones
   name=$(basename "$file" .obj)
   out=$tmp/$name
-  "$bin" param "$mesh" --cones "$cfile" -o "$out.obj" --svg "$out.svg" --domain-svg "$out.omega.svg" \
+  "$bin" param "$mesh" --cones "$cfile" -o "$out.obj" --svg "$out.svg" --domain-svg "$out.omega.svg" --cut-svg "$out.cut.svg" \
     --seed "$(seed_of "$name")" --attempts 1 --fallback off --json --quiet >"$out.json" 2>"$out.err"
   rc=$?
   if [ "$name" = twirl ]; then
     if [ $rc -eq 1 ] && grep -q "vertex 4865 has a cone of valence 1" "$out.err" \
-        && [ -z "$(ls -A "$tmp" | grep "^twirl\.\(obj\|svg\|omega\.svg\)$")" ] \
+        && [ -z "$(ls -A "$tmp" | grep "^twirl\.\(obj\|svg\|omega\.svg\|cut\.svg\)$")" ] \
         && [ -z "$(ls -A "$tmp" | grep partial)" ]; then
       ok; echo "PASS $file: refused (valence-1 cone at vertex 4865), nothing written"
     else
@@ -54,7 +54,7 @@ while IFS=$'\t' read -r file _ _ _ _ _ _ closed genus cones _; do
     # vertices. Then the run must fail cleanly: exit 3, that message, and
     # nothing written. Models in $must_pass must succeed.
     if [ $rc -eq 3 ] && grep -q "not injective in floating point\|Steiner vertices were needed\|cut graph: .*no route" "$out.err" \
-        && [ ! -e "$out.obj" ] && [ ! -e "$out.svg" ] && [ ! -e "$out.omega.svg" ] \
+        && [ ! -e "$out.obj" ] && [ ! -e "$out.svg" ] && [ ! -e "$out.omega.svg" ] && [ ! -e "$out.cut.svg" ] \
         && ! echo " $must_pass " | grep -q " $name " \
         && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); a=j["last_attempt"]; assert not j["ok"] and j["error"]["code"]=="solver" and a["attempts"]==1 and a["genus"]==int(sys.argv[2]) and a["cones"]>0, j' "$out.json" "$genus"; then
       ok; known=$((known + 1)); echo "KNOWN $file: clean failure, nothing written: $(grep -o 'not injective[^;]*;\|more than [0-9]* Steiner\|cut graph: [^(]*' "$out.err" | head -1)"
@@ -75,9 +75,13 @@ assert j["verts_out"] == j["verts_in"] + j["steiner"], j
 assert j["faces_out"] >= j["faces_in"] and j["seam_edges"] > 0 and j["uv_points"] > 0, j
 assert j["quads"] == j["quads_before_padding"] + j["quads_added_by_padding"] > 0, j
 assert j["peak_rss_mb"] > 0 and j["time_s"]["total"] > 0, j
-assert len(j["outputs"]) == 3, j
+assert len(j["outputs"]) == 4, j
 PY
-  if [ -s "$out.svg" ] && [ -s "$out.omega.svg" ] && head -c 4 "$out.svg" | grep -q "<svg"; then
+  # the cut on the surface: three views, each with every cone once
+  ncones=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["cones"])' "$out.json")
+  if [ -s "$out.svg" ] && [ -s "$out.omega.svg" ] && head -c 4 "$out.svg" | grep -q "<svg" \
+      && head -c 4 "$out.cut.svg" | grep -q "<svg" && [ "$(grep -c "<circle" "$out.cut.svg")" -eq $((3 * ncones)) ] \
+      && grep -q "d7191c" "$out.cut.svg"; then
     ok; echo "PASS $file: $(tail -1 "$out.ref")"
   else
     bad "$file: missing SVG"

@@ -12,7 +12,9 @@
  *  - keep the seam edges' count, have fewer faces, and a worst conformal
  *    ratio no larger;
  *  - be a fixed point: simplifying it again removes nothing.
- * Bad calls (no tri_in, another mesh) are refused. */
+ * Its picture of the cut on the surface (sq_param_write_cut_svg) shows
+ * every cone in each of its three views. Bad calls (no tri_in, another
+ * mesh) are refused. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -186,9 +188,28 @@ static void check_model(const char *rel, int want_overlay)
     assert_int_equal(sq_param_simplify(&m, &B, &again, &err), SQ_OK);
     assert_int_equal(again, 0);
     referee_passes(mesh, cones, &B);
+    /* the cut on the surface (sq_param_write_cut_svg): three views, every
+     * cone once per view */
+    {
+        char svg[] = "/tmp/sq_test_cut_svg_XXXXXX";
+        int fd = mkstemp(svg);
+        assert_true(fd >= 0);
+        close(fd);
+        assert_int_equal(sq_param_write_cut_svg(svg, &m, &B, &err), SQ_OK);
+        FILE *f = fopen(svg, "rb");
+        assert_non_null(f);
+        char line[4096];
+        uint32_t circles = 0, seams = 0;
+        while (fgets(line, sizeof line, f)) circles += strstr(line, "<circle") != NULL, seams += strstr(line, "#d7191c") != NULL;
+        fclose(f);
+        remove(svg);
+        assert_int_equal(circles, 3 * sb.ncones);
+        assert_true(seams >= 3 * sb.seam_edges / 2);
+    }
     /* bad calls: another mesh, no input faces */
     sq_mesh other;
     sq_test_load_mesh(&other, "mpz/knot1.obj");
+    assert_int_equal(sq_param_write_cut_svg("/tmp/sq_test_never.svg", &other, &B, &err), SQ_ERR_ARGUMENT);
     assert_int_equal(sq_param_simplify(&other, &B, NULL, &err), SQ_ERR_ARGUMENT);
     free(B.tri_in);
     B.tri_in = NULL;
