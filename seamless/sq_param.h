@@ -271,7 +271,7 @@ sq_status sq_param_write_obj(const char *path, const sq_param *P, sq_error *err)
 sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err);
 
 /* SVG of the cut on the surface (sq_param_cut_svg.c): the input mesh m
- * in three orthographic views (front, side, top), shaded and drawn back to
+ * in three orthographic views (front, side, from (1, 1, 1)), shaded and drawn back to
  * front, with P's seams (the cut graph and the cone tree: he_cut 1) where
  * they are visible, cones by valence and the seams' branch points.
  * Written atomically. */

@@ -1,10 +1,11 @@
 /* seamquad: a picture of the cut on the surface (issue 4, outputs): the
- * input mesh in three orthographic views (front, side, top), shaded by
- * how squarely each triangle faces the viewer and drawn back to front, with
+ * input mesh in three orthographic views (front, side, and from the
+ * (1, 1, 1) direction), shaded by a light from the viewer's upper left
+ * and drawn back to front, with
  * the seams of the map (the cut graph and the cone tree: he_cut 1) on it,
  * the cones by valence and the seams' branch points. A seam segment is
- * drawn just after the triangles at its depth, so nearer parts of the
- * surface hide it as they hide the surface; cones and branch points are
+ * drawn after the triangles up to half its length in front of it, so
+ * nearer parts of the surface hide it as they hide the surface; cones and branch points are
  * drawn on top (also where hidden: no depth test for points). The library
  * never prints or exits. */
 #include <inttypes.h>
@@ -35,12 +36,16 @@ static int item_cmp(const void *x, const void *y)
 }
 
 /* View k: screen right r, screen up u, towards the viewer d. */
+#define R2 0.70710678118654752
+#define R3 0.57735026918962576
+#define R6 0.40824829046386302
 static const double AXES[3][3][3] = {
-    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  /* front: looking along -z */
-    {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}}, /* side: along -x          */
-    {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}, /* top: along -y           */
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},                          /* front: along -z   */
+    {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}},                         /* side: along -x    */
+    {{R2, 0, -R2}, {-R6, 2 * R6, -R6}, {R3, R3, R3}},           /* along -(1, 1, 1)  */
 };
-static const char *VIEW_NAME[3] = {"front (x right, y up)", "side (-z right, y up)", "top (x right, -z up)"};
+static const char *VIEW_NAME[3] = {"front (x right, y up)", "side (-z right, y up)",
+                                   "from (1, 1, 1) (y up)"};
 
 static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -77,10 +82,21 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
             double x = m->pos[3 * (size_t)v + d];
             lo[d] = x < lo[d] ? x : lo[d], hi[d] = x > hi[d] ? x : hi[d];
         }
-    double c[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
     double ext = 0;
     for (int d = 0; d < 3; d++) ext = hi[d] - lo[d] > ext ? hi[d] - lo[d] : ext;
-    const double s = (VIEW - 2 * GAP) / (ext > 0 ? ext : 1);
+    /* each view centred on its projected box; one scale that fits them all */
+    double cr[3], cu[3], big = 0;
+    for (int k = 0; k < 3; k++) {
+        double r0 = INFINITY, r1 = -INFINITY, u0 = INFINITY, u1 = -INFINITY;
+        for (uint32_t v = 0; v < m->nv; v++) {
+            const double *p = m->pos + 3 * (size_t)v;
+            double x = dot(p, AXES[k][0]), y = dot(p, AXES[k][1]);
+            r0 = x < r0 ? x : r0, r1 = x > r1 ? x : r1, u0 = y < u0 ? y : u0, u1 = y > u1 ? y : u1;
+        }
+        cr[k] = (r0 + r1) / 2, cu[k] = (u0 + u1) / 2;
+        big = r1 - r0 > big ? r1 - r0 : big, big = u1 - u0 > big ? u1 - u0 : big;
+    }
+    const double s = (VIEW - 2 * GAP) / (big > 0 ? big : 1);
     for (uint32_t f = 0; f < m->nf; f++) {
         uint32_t h = m->f_he[f];
         const double *p0 = m->pos + 3 * (size_t)m->he_vert[h], *p1 = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
@@ -108,8 +124,16 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
     for (int k = 0; k < 3 && !ferror(out); k++) {
         const double *r = AXES[k][0], *u = AXES[k][1], *d = AXES[k][2];
         const double x0 = k * VIEW + VIEW / 2, y0 = TOP + VIEW / 2;
-#define PX(p) (x0 + s * (dot(p, r) - dot(c, r)))
-#define PY(p) (y0 - s * (dot(p, u) - dot(c, u)))
+        /* light from the viewer's upper left, so that faces at the same
+         * angle to the view still differ */
+        double light[3];
+        for (int i = 0; i < 3; i++) light[i] = 0.8 * d[i] + 0.45 * u[i] - 0.4 * r[i];
+        {
+            double l = sqrt(dot(light, light));
+            for (int i = 0; i < 3; i++) light[i] /= l;
+        }
+#define PX(p) (x0 + s * (dot(p, r) - cr[k]))
+#define PY(p) (y0 - s * (dot(p, u) - cu[k]))
         for (uint32_t f = 0; f < m->nf; f++) {
             uint32_t h = m->f_he[f];
             const double *p0 = m->pos + 3 * (size_t)m->he_vert[h], *p1 = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
@@ -119,7 +143,11 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
         for (uint32_t i = 0; i < nseam; i++) {
             uint32_t e = seam[i];
             const double *a = P->pos + 3 * (size_t)P->tri[e], *b = P->pos + 3 * (size_t)P->tri[e - e % 3 + (e % 3 + 1) % 3];
-            it[m->nf + i] = (item){(dot(a, d) + dot(b, d)) / 2 + 1e-6 * ext, m->nf + i};
+            /* in front of the triangles around it (their centroids lie
+             * within about an edge length of its midpoint), behind the
+             * surface further in front */
+            double len = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+            it[m->nf + i] = (item){(dot(a, d) + dot(b, d)) / 2 + 0.5 * len + 1e-6 * ext, m->nf + i};
         }
         qsort(it, n, sizeof *it, item_cmp);
         fprintf(out, "<g stroke-linejoin=\"round\">\n");
@@ -129,9 +157,9 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
                 uint32_t h = m->f_he[x];
                 const double *p0 = m->pos + 3 * (size_t)m->he_vert[h], *p1 = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
                              *p2 = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
-                int g = (int)(70 + 170 * fabs(dot(nrm + 3 * (size_t)x, d)));
+                int g = (int)(70 + 170 * fabs(dot(nrm + 3 * (size_t)x, light)));
                 fprintf(out, "<path d=\"M%.1f %.1fL%.1f %.1fL%.1f %.1fz\" fill=\"#%02x%02x%02x\" stroke=\"#%02x%02x%02x\" "
-                             "stroke-width=\"0.3\"/>\n",
+                             "stroke-width=\"1\"/>\n",
                         PX(p0), PY(p0), PX(p1), PY(p1), PX(p2), PY(p2), g, g, g, g, g, g);
             } else {
                 uint32_t e = seam[x - m->nf];
