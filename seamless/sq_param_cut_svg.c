@@ -75,7 +75,7 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
         uint32_t a = P->tri[k], b = P->tri[k - k % 3 + (k % 3 + 1) % 3];
         if (P->he_cut[k] == 1 && a < b) seam[nseam++] = k, deg[a]++, deg[b]++;
     }
-    /* the frame: one scale for all views, from the bounding box */
+    /* the bounding box's extent (a depth offset for the seams) */
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t v = 0; v < m->nv; v++)
         for (int d = 0; d < 3; d++) {
