@@ -176,10 +176,12 @@ static uint32_t surface_corner(uint32_t k, uint32_t r, uint32_t i) { return (k -
 static uint32_t surface_corner_of_q(const ctx *c, uint32_t i) { return surface_corner(c->k, c->r, i); }
 
 /* Steiner vertices allowed (sq_param_options.max_steiner) */
-static uint64_t steiner_budget(const ctx *c)
+uint64_t sq_param_steiner_budget(const sq_param_options *opt, uint32_t nv_input)
 {
-    return c->opt->max_steiner ? c->opt->max_steiner : 9u * (uint64_t)c->S.nv_input + 100000u;
+    return opt->max_steiner ? opt->max_steiner : 9u * (uint64_t)nv_input + 100000u;
 }
+
+static uint64_t steiner_budget(const ctx *c) { return sq_param_steiner_budget(c->opt, c->S.nv_input); }
 
 static int cancelled(const ctx *c) { return c->cancel && atomic_load(c->cancel); }
 
@@ -2888,12 +2890,14 @@ static sq_status overlay_map(ctx *c, const int32_t *valence, int rectangles, sq_
     sq_status st = omega_boundary(W, oseq) == SQ_NONE
                        ? sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", W->nbnd)
                        : surface_disk_build(c, oseq, &A);
-    if (st == SQ_OK && rectangles) st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
-    const sq_omega_cells *first = rectangles == 2 ? &C : NULL, *second = rectangles == 2 ? NULL : &C;
-    if (st == SQ_OK) st = overlay_with(c, &A, oseq, first, valence, P, stats);
+    /* the chords' cells only when the rectangles are tried */
+    if (st == SQ_OK && rectangles == 2) st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
+    if (st == SQ_OK) st = overlay_with(c, &A, oseq, rectangles == 2 ? &C : NULL, valence, P, stats);
     if (st == SQ_ERR_SOLVER && rectangles) {
         sq_param_free(P);
-        st = overlay_with(c, &A, oseq, second, valence, P, stats);
+        if (rectangles == 1) st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
+        else st = SQ_OK;
+        if (st == SQ_OK) st = overlay_with(c, &A, oseq, rectangles == 2 ? NULL : &C, valence, P, stats);
     }
     sq_omega_cells_free(&C);
     surface_disk_free(&A);

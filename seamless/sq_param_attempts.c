@@ -170,7 +170,7 @@ static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq
     /* the Steiner budget of the cuts stays (an attempt whose tree winds
      * fails there, early); the overlay may cross more */
     if (!f.max_crossings) {
-        uint64_t base = f.max_steiner ? f.max_steiner : 9u * (uint64_t)m->nv + 100000u;
+        uint64_t base = sq_param_steiner_budget(&f, m->nv);
         uint64_t per = SQ_FALLBACK_PER_FACE * (uint64_t)m->nf;
         if (per > SQ_FALLBACK_MAX_CROSSINGS) per = SQ_FALLBACK_MAX_CROSSINGS;
         f.max_crossings = per > base ? per : base;

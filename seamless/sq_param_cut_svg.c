@@ -49,6 +49,15 @@ static const char *VIEW_NAME[3] = {"front (x right, y up)", "side (-z right, y u
 
 static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+/* The corner positions of input face f. */
+static void face_corners(const sq_mesh *m, uint32_t f, const double **p0, const double **p1, const double **p2)
+{
+    uint32_t h = m->f_he[f];
+    *p0 = m->pos + 3 * (size_t)m->he_vert[h];
+    *p1 = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]];
+    *p2 = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
+}
+
 sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_param *P, sq_error *err)
 {
     if (!path || !m || !P) return sq_error_set(err, SQ_ERR_ARGUMENT, "cut SVG: NULL argument");
@@ -98,9 +107,8 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
     }
     const double s = (VIEW - 2 * GAP) / (big > 0 ? big : 1);
     for (uint32_t f = 0; f < m->nf; f++) {
-        uint32_t h = m->f_he[f];
-        const double *p0 = m->pos + 3 * (size_t)m->he_vert[h], *p1 = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
-                     *p2 = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
+        const double *p0, *p1, *p2;
+        face_corners(m, f, &p0, &p1, &p2);
         double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
         double *q = nrm + 3 * (size_t)f;
         q[0] = e1[1] * e2[2] - e1[2] * e2[1], q[1] = e1[2] * e2[0] - e1[0] * e2[2], q[2] = e1[0] * e2[1] - e1[1] * e2[0];
@@ -135,9 +143,8 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
 #define PX(p) (x0 + s * (dot(p, r) - cr[k]))
 #define PY(p) (y0 - s * (dot(p, u) - cu[k]))
         for (uint32_t f = 0; f < m->nf; f++) {
-            uint32_t h = m->f_he[f];
-            const double *p0 = m->pos + 3 * (size_t)m->he_vert[h], *p1 = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
-                         *p2 = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
+            const double *p0, *p1, *p2;
+            face_corners(m, f, &p0, &p1, &p2);
             it[f] = (item){(dot(p0, d) + dot(p1, d) + dot(p2, d)) / 3, f};
         }
         for (uint32_t i = 0; i < nseam; i++) {
@@ -154,9 +161,8 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
         for (uint32_t i = 0; i < n && !ferror(out); i++) {
             uint32_t x = it[i].index;
             if (x < m->nf) {
-                uint32_t h = m->f_he[x];
-                const double *p0 = m->pos + 3 * (size_t)m->he_vert[h], *p1 = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
-                             *p2 = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
+                const double *p0, *p1, *p2;
+                face_corners(m, x, &p0, &p1, &p2);
                 int g = (int)(70 + 170 * fabs(dot(nrm + 3 * (size_t)x, light)));
                 fprintf(out, "<path d=\"M%.1f %.1fL%.1f %.1fL%.1f %.1fz\" fill=\"#%02x%02x%02x\" stroke=\"#%02x%02x%02x\" "
                              "stroke-width=\"1\"/>\n",

@@ -24,6 +24,10 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
                               const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
                               sq_error *err);
 
+/* Steiner vertices an attempt may add (sq_param_options.max_steiner, or
+ * 9 per input vertex + 100000). */
+uint64_t sq_param_steiner_budget(const sq_param_options *opt, uint32_t nv_input);
+
 /* The colour of a cone of valence k in the pictures (sq_param_io.c). */
 const char *sq_param_valence_colour(int32_t k);
 
