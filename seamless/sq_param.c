@@ -2290,313 +2290,6 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
 
 /* ---- steps 6-7, overlay variant: both disks on one circle ------------- */
 
-/* Twins of a triangle list by vertex pairs (sorting): twin[3 f + i] is the
- * halfedge running the other way, SQ_NONE when it has none. -1: out of
- * memory, -2: an edge with more than two halfedges or two in one
- * direction. */
-typedef struct edge_key {
-    uint64_t key;
-    uint32_t h;
-} edge_key;
-
-static int edge_key_cmp(const void *x, const void *y)
-{
-    const edge_key *a = x, *b = y;
-    return a->key < b->key ? -1 : a->key > b->key ? 1 : (a->h > b->h) - (a->h < b->h);
-}
-
-static int pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin)
-{
-    size_t nh = 3 * (size_t)nf;
-    edge_key *k = malloc(nh * sizeof *k);
-    if (!k) return -1;
-    for (size_t h = 0; h < nh; h++) {
-        uint32_t a = tri[h], b = tri[h - h % 3 + (h % 3 + 1) % 3];
-        k[h].key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
-        k[h].h = (uint32_t)h;
-        twin[h] = SQ_NONE;
-    }
-    qsort(k, nh, sizeof *k, edge_key_cmp);
-    int r = 0;
-    for (size_t i = 0; i < nh && !r;) {
-        size_t j = i + 1;
-        while (j < nh && k[j].key == k[i].key) j++;
-        if (j - i > 2) r = -2;
-        if (j - i == 2) {
-            uint32_t h = k[i].h, g = k[i + 1].h;
-            if (tri[h] == tri[g]) r = -2;
-            twin[h] = g, twin[g] = h;
-        }
-        i = j;
-    }
-    free(k);
-    return r;
-}
-
-/* Tutte's map of one mesh (nf triangles tri, twins twin) onto the disk:
- * its interior vertices [first, first + n) at the mean-value-weighted mean
- * of their neighbours (one UMFPACK solve), the other vertices fixed at
- * their xy. p3: a 3D position per vertex id, for the weights. */
-static sq_status disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *twin, uint32_t first,
-                            uint32_t n, const double *p3, double *xy, sq_error *err)
-{
-    if (!n) return SQ_OK;
-    size_t nh = 3 * (size_t)nf, nnz = 0;
-    uint32_t *ri = malloc((nh + n) * sizeof *ri), *cj = malloc((nh + n) * sizeof *cj);
-    double *val = malloc((nh + n) * sizeof *val), *rhs = calloc(2 * (size_t)n, sizeof *rhs),
-           *diag = calloc(n, sizeof *diag), *x = malloc(2 * (size_t)n * sizeof *x);
-    sq_lu *lu = NULL;
-    sq_status st = SQ_OK;
-    if (!ri || !cj || !val || !rhs || !diag || !x) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    for (size_t h = 0; h < nh; h++) {
-        uint32_t v = tri[h];
-        if (v < first || v >= first + n) continue;
-        size_t hn = h - h % 3 + (h % 3 + 1) % 3, hp = h - h % 3 + (h % 3 + 2) % 3;
-        uint32_t w = tri[hn], a = tri[hp], t = twin[h];
-        if (t == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "disk map: interior vertex %u on a boundary edge", v);
-            goto done;
-        }
-        uint32_t b = tri[t - t % 3 + (t % 3 + 2) % 3];
-        double wt = sq_mean_value_weight(p3 + 3 * (size_t)v, p3 + 3 * (size_t)w, p3 + 3 * (size_t)a,
-                                         p3 + 3 * (size_t)b);
-        diag[v - first] += wt;
-        if (w >= first && w < first + n) {
-            ri[nnz] = v - first, cj[nnz] = w - first, val[nnz] = -wt, nnz++;
-        } else {
-            rhs[v - first] += wt * xy[2 * (size_t)w];
-            rhs[n + v - first] += wt * xy[2 * (size_t)w + 1];
-        }
-    }
-    for (uint32_t i = 0; i < n; i++) ri[nnz] = i, cj[nnz] = i, val[nnz] = diag[i], nnz++;
-    st = sq_lu_factor(n, nnz, ri, cj, val, &lu, err);
-    if (st == SQ_OK) st = sq_lu_solve(lu, 2, rhs, x, err);
-    if (st) goto done;
-    for (uint32_t i = 0; i < n; i++) xy[2 * ((size_t)first + i)] = x[i], xy[2 * ((size_t)first + i) + 1] = x[n + i];
-done:
-    if (lu) sq_lu_free(lu);
-    free(ri), free(cj), free(val), free(rhs), free(diag), free(x);
-    return st;
-}
-
-typedef struct tri_list {
-    uint32_t *t;
-    uint32_t n, cap;
-} tri_list;
-
-static int tri_add(tri_list *L, uint32_t a, uint32_t b, uint32_t c)
-{
-    if (L->n == L->cap) {
-        uint32_t cap = L->cap ? 2 * L->cap : 4096;
-        uint32_t *p = realloc(L->t, 3 * (size_t)cap * sizeof *p);
-        if (!p) return -1;
-        L->t = p, L->cap = cap;
-    }
-    L->t[3 * L->n] = a, L->t[3 * L->n + 1] = b, L->t[3 * L->n + 2] = c;
-    L->n++;
-    return 0;
-}
-
-/* Triangles (c, p0, x1), (c, x1, x2), ..., (c, xn, p1). */
-static int tri_fan(tri_list *L, uint32_t c, uint32_t p0, uint32_t n, const uint32_t *x, uint32_t p1)
-{
-    uint32_t prev = p0;
-    for (uint32_t k = 0; k < n; prev = x[k++])
-        if (tri_add(L, c, prev, x[k])) return -1;
-    return tri_add(L, c, prev, p1);
-}
-
-/* The sizes of the layers above n points: each keeps every other point of
- * the one below, its first and its last, until two are left. Returns the
- * number of layers L (sizes[1..L]). */
-static uint32_t layer_sizes(uint32_t n, uint32_t sizes[41])
-{
-    uint32_t L = 0;
-    while (n > 2 && L < 40) {
-        n = (n - 1) / 2 + 1 + (n - 1) % 2;
-        sizes[++L] = n;
-    }
-    return L;
-}
-
-/* generalized graded layers (experiment) */
-static int boundary_layers(tri_list *L, uint32_t n, uint32_t *x, double *t, uint32_t c, uint32_t p0,
-                           uint32_t p1, double *uv, uint32_t *next)
-{
-    const double *P0 = uv + 2 * (size_t)p0, *P1 = uv + 2 * (size_t)p1, *C = uv + 2 * (size_t)c;
-    double d[2] = {P1[0] - P0[0], P1[1] - P0[1]};
-    double dd = d[0] * d[0] + d[1] * d[1];
-    double ct = ((C[0] - P0[0]) * d[0] + (C[1] - P0[1]) * d[1]) / dd;
-    for (uint32_t k = 0; k < n; k++) {
-        const double *u = uv + 2 * (size_t)x[k];
-        t[k] = ((u[0] - P0[0]) * d[0] + (u[1] - P0[1]) * d[1]) / dd;
-    }
-    uint32_t sizes[41], nl = layer_sizes(n, sizes);
-    uint32_t *lo = x, *up = x + n + 32;
-    double *tlo = t, *tup = t + n + 32, slo = 0;
-    for (uint32_t l = 1; l <= nl; l++) {
-        double sl = 0.9 * ldexp(1.0, (int)l - (int)nl);
-        uint32_t m = 0;
-        for (uint32_t k = 0; k < n; k++) {
-            if (k % 2 && k != n - 1) continue;
-            uint32_t id = (*next)++;
-            for (int q = 0; q < 2; q++) uv[2 * (size_t)id + q] = (1 - sl) * (P0[q] + tlo[k] * d[q]) + sl * C[q];
-            up[m] = id, tup[m] = tlo[k], m++;
-        }
-        if (tri_add(L, p0, lo[0], up[0])) return -1;
-        uint32_t i = 0, j = 0;
-        while (i + 1 < n || j + 1 < m) {
-            double xl = i + 1 < n ? (1 - slo) * tlo[i + 1] + slo * ct : 2;
-            double xu = j + 1 < m ? (1 - sl) * tup[j + 1] + sl * ct : 2;
-            if (xl < xu) {
-                if (tri_add(L, lo[i], lo[i + 1], up[j])) return -1;
-                i++;
-            } else {
-                if (tri_add(L, lo[i], up[j + 1], up[j])) return -1;
-                j++;
-            }
-        }
-        if (tri_add(L, lo[n - 1], p1, up[m - 1])) return -1;
-        uint32_t *ti = lo;
-        lo = up, up = ti;
-        double *td = tlo;
-        tlo = tup, tup = td;
-        n = m, slo = sl;
-    }
-    return tri_fan(L, c, p0, n, lo, p1);
-}
-
-static int cell_side(const sq_metapolygon *W, const uint8_t *he_chord, uint32_t h)
-{
-    return W->he_face[W->he_twin[h]] == SQ_NONE || !he_chord || he_chord[h];
-}
-
-static sq_status omega_triangulation(const sq_omega *O, const sq_omega_cells *C, uint32_t nbl, uint32_t na,
-                                     const uint32_t *wb, const uint32_t *oseq, const uint32_t *bstart,
-                                     const double *buv0, uint32_t *nv_out, double **uv_out, tri_list *bt,
-                                     sq_error *err)
-{
-    const sq_metapolygon *W = &O->cut;
-    const uint8_t *chord = C ? C->he_chord : NULL;
-    uint32_t ncells = C ? C->ncells : W->nf, nb = W->nbnd;
-    uint32_t *wid = malloc((size_t)W->nv * sizeof *wid), *opos = malloc((size_t)W->nh * sizeof *opos);
-    uint32_t *mid = malloc((size_t)W->nh * sizeof *mid), *cstart = malloc((size_t)ncells * sizeof *cstart);
-    uint32_t *ring = malloc(((size_t)W->nh + 1) * sizeof *ring);
-    uint32_t *pts = malloc(2 * ((size_t)nbl + W->nh + 64) * sizeof *pts);
-    double *pt = malloc(2 * ((size_t)nbl + W->nh + 64) * sizeof *pt), *uv = NULL;
-    sq_status st = SQ_OK;
-    uint32_t nv = na;
-    if (!wid || !opos || !mid || !cstart || !ring || !pts || !pt) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    for (uint32_t h = 0; h < W->nh; h++) opos[h] = mid[h] = SQ_NONE;
-    for (uint32_t i = 0; i < nb; i++) opos[oseq[i]] = i;
-    for (uint32_t k = 0; k < ncells; k++) cstart[k] = SQ_NONE;
-    for (uint32_t h = 0; h < W->nh; h++) {
-        uint32_t f = W->he_face[h];
-        if (f == SQ_NONE || !cell_side(W, chord, h)) continue;
-        uint32_t k = C ? C->f_cell[f] : f;
-        if (cstart[k] == SQ_NONE) cstart[k] = h;
-    }
-    memcpy(wid, wb, (size_t)W->nv * sizeof *wid);
-    for (uint32_t h = 0; h < W->nh; h++)
-        if (W->he_face[h] != SQ_NONE && cell_side(W, chord, h) && wid[W->he_vert[h]] == SQ_NONE)
-            wid[W->he_vert[h]] = nv++;
-    uint32_t centre0 = nv;
-    nv += ncells;
-    for (uint32_t h = 0; h < W->nh; h++) {
-        uint32_t t = W->he_twin[h];
-        if (W->he_face[h] == SQ_NONE || W->he_face[t] == SQ_NONE || t < h || !cell_side(W, chord, h)) continue;
-        if (wid[W->he_vert[h]] < nbl && wid[W->he_vert[t]] < nbl) mid[h] = mid[t] = nv++;
-    }
-    uint32_t layer0 = nv, next = 0;
-    for (int pass = 0; pass < 2 && st == SQ_OK; pass++) {
-        if (pass == 1) {
-            uv = malloc(2 * (size_t)nv * sizeof *uv);
-            if (!uv) {
-                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-                break;
-            }
-            memcpy(uv, buv0, 2 * (size_t)nbl * sizeof *uv);
-            for (uint32_t v = 0; v < W->nv; v++)
-                if (wid[v] != SQ_NONE && wid[v] >= na)
-                    uv[2 * (size_t)wid[v]] = (double)O->xy[2 * v], uv[2 * (size_t)wid[v] + 1] = (double)O->xy[2 * v + 1];
-            for (uint32_t h = 0; h < W->nh; h++)
-                if (mid[h] != SQ_NONE && h < W->he_twin[h]) {
-                    uint32_t a = W->he_vert[h], b = W->he_vert[W->he_twin[h]];
-                    uv[2 * (size_t)mid[h]] = 0.5 * (double)(O->xy[2 * a] + O->xy[2 * b]);
-                    uv[2 * (size_t)mid[h] + 1] = 0.5 * (double)(O->xy[2 * a + 1] + O->xy[2 * b + 1]);
-                }
-            next = layer0;
-        }
-        for (uint32_t k = 0; k < ncells && st == SQ_OK; k++) {
-            uint32_t nr = 0, h = cstart[k];
-            if (h == SQ_NONE) {
-                st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: cell %u has no side", k);
-                break;
-            }
-            do {
-                ring[nr++] = h;
-                uint32_t g = W->he_next[h];
-                while (!cell_side(W, chord, g)) g = W->he_next[W->he_twin[g]];
-                h = g;
-            } while (h != cstart[k] && nr <= W->nh);
-#define DIR(e, q) (O->xy[2 * W->he_vert[W->he_next[e]] + (q)] - O->xy[2 * W->he_vert[e] + (q)])
-            uint32_t r0 = 0;
-            while (r0 < nr && DIR(ring[r0], 0) == DIR(ring[(r0 + nr - 1) % nr], 0) &&
-                   DIR(ring[r0], 1) == DIR(ring[(r0 + nr - 1) % nr], 1))
-                r0++;
-            if (h != cstart[k] || r0 == nr) {
-                st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: cell %u is not a rectangle", k);
-                break;
-            }
-            int64_t bx0 = INT64_MAX, by0 = INT64_MAX, bx1 = INT64_MIN, by1 = INT64_MIN;
-            for (uint32_t q = 0; q < nr; q++) {
-                int64_t x = O->xy[2 * W->he_vert[ring[q]]], y = O->xy[2 * W->he_vert[ring[q]] + 1];
-                bx0 = x < bx0 ? x : bx0, bx1 = x > bx1 ? x : bx1, by0 = y < by0 ? y : by0, by1 = y > by1 ? y : by1;
-            }
-            uint32_t cid = centre0 + k;
-            if (pass == 1) uv[2 * (size_t)cid] = 0.5 * (double)(bx0 + bx1), uv[2 * (size_t)cid + 1] = 0.5 * (double)(by0 + by1);
-            for (uint32_t q = 0; q < nr && st == SQ_OK;) {
-                uint32_t e0 = ring[(r0 + q) % nr], np = 0, e = e0, q1 = q;
-                for (;;) {
-                    if (e != e0) pts[np++] = wid[W->he_vert[e]];
-                    if (opos[e] != SQ_NONE) {
-                        uint32_t i = opos[e], m1 = bstart[(i + 1) % nb];
-                        for (uint32_t p = (bstart[i] + 1) % nbl; p != m1; p = (p + 1) % nbl) pts[np++] = p;
-                    } else if (mid[e] != SQ_NONE) {
-                        pts[np++] = mid[e];
-                    }
-                    q1++;
-                    if (q1 == nr) break;
-                    uint32_t en = ring[(r0 + q1) % nr];
-                    if (DIR(en, 0) != DIR(e, 0) || DIR(en, 1) != DIR(e, 1)) break;
-                    e = en;
-                }
-                uint32_t p0 = wid[W->he_vert[e0]], p1 = wid[W->he_vert[W->he_next[e]]];
-                if (pass == 0) {
-                    uint32_t sizes[41], L = np >= 3 ? layer_sizes(np, sizes) : 0;
-                    for (uint32_t l = 1; l <= L; l++) nv += sizes[l];
-                } else if (np >= 3 ? boundary_layers(bt, np, pts, pt, cid, p0, p1, uv, &next)
-                                   : tri_fan(bt, cid, p0, np, pts, p1)) {
-                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-                }
-                q = q1;
-            }
-#undef DIR
-        }
-    }
-done:
-    free(wid), free(opos), free(mid), free(cstart), free(ring), free(pts), free(pt);
-    if (st) free(uv), uv = NULL;
-    *nv_out = nv, *uv_out = uv;
-    return st;
-}
-
 /* The interior map by overlay (sq_overlay.h; seamless-notes 5): the cut
  * surface A and Omega B (every unit square fanned from its centre, its
  * boundary edges split at the surface's boundary vertices) are mapped onto
@@ -2722,7 +2415,7 @@ static sq_status surface_disk_build(ctx *c, const uint32_t *oseq, surface_disk *
         for (uint32_t i = 0; i < 3; i++, e = S->next[e]) A->twin[3 * f + i] = S->kind[e] ? SQ_NONE : hpos[S->twin[e]];
     }
     for (uint32_t i = 0; i < na; i++) memcpy(p3 + 3 * (size_t)i, S->pos + 3 * (size_t)A->a2s[i], 3 * sizeof *p3);
-    st = disk_tutte(S->nf, A->tri, A->twin, nbl, na - nbl, p3, A->xy, err);
+    st = sq_param_disk_tutte(S->nf, A->tri, A->twin, nbl, na - nbl, p3, A->xy, err);
 done:
     free(bidx), free(aid), free(hpos), free(p3);
     if (st) surface_disk_free(A);
@@ -2740,12 +2433,12 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     uint32_t nbl = A->nbl, na = A->na, nv = 0;
     double *xy = NULL, *p3 = NULL, *buv = NULL;
     uint32_t *btw = NULL;
-    tri_list bt = {0};
+    sq_param_tri_list bt = {0};
     sq_overlay X;
     sq_overlay_init(&X);
     sq_mesh pm;
     memset(&pm, 0, sizeof pm);
-    sq_status st = omega_triangulation(c->O, C, nbl, na, A->wb, oseq, A->bstart, A->buv, &nv, &buv, &bt, err);
+    sq_status st = sq_param_omega_triangulation(c->O, C, nbl, na, A->wb, oseq, A->bstart, A->buv, &nv, &buv, &bt, err);
     if (st) goto done;
     const uint32_t *btri = bt.t;
     uint32_t nbt = bt.n;
@@ -2761,7 +2454,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    if (pair_twins(nbt, btri, btw)) {
+    if (sq_param_pair_twins(nbt, btri, btw)) {
         st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangulation is not a manifold disk");
         goto done;
     }
@@ -2770,7 +2463,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     memcpy(xy, A->xy, 2 * (size_t)na * sizeof *xy);
     for (uint32_t i = 0; i < nv; i++)
         if (i < nbl || i >= na) p3[3 * (size_t)i] = buv[2 * i], p3[3 * (size_t)i + 1] = buv[2 * i + 1];
-    st = disk_tutte(nbt, btri, btw, na, nv - na, p3, xy, err);
+    st = sq_param_disk_tutte(nbt, btri, btw, na, nv - na, p3, xy, err);
     if (st) goto done;
     sq_overlay_mesh Am = {S->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
     progress(c, "overlay", 0.75);

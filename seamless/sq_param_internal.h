@@ -4,6 +4,8 @@
 #define SQ_PARAM_INTERNAL_H
 
 #include "sq_mesh.h"
+#include "sq_omega.h"
+#include "sq_omega_cells.h"
 #include "sq_param.h"
 
 /* The halfedge mesh of P's triangles: halfedge c starts at corner c (face
@@ -34,5 +36,44 @@ const char *sq_param_valence_colour(int32_t k);
 /* The distortion statistics of P into stats (sym_dirichlet_*,
  * conformal_*; sq_param.c). */
 void sq_param_distortion(const sq_param *P, sq_param_stats *stats);
+
+/* ---- step 7' (the overlay; sq_param.c) ---------------------------------- */
+
+/* Twins of a triangle list by vertex pairs (sorting): twin[3 f + i] is the
+ * halfedge running the other way, SQ_NONE when it has none. 0; -1: out of
+ * memory; -2: an edge with more than two halfedges or two in one direction
+ * (sq_param_disk_tutte.c). */
+int sq_param_pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin);
+
+/* Tutte's map of one triangulated disk (nf triangles tri, twins twin) onto
+ * the plane: its interior vertices [first, first + n) at the
+ * mean-value-weighted mean of their neighbours (one UMFPACK solve), every
+ * other vertex fixed at its xy. p3: a 3D position per vertex id, for the
+ * weights (sq_param_disk_tutte.c). */
+sq_status sq_param_disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *twin, uint32_t first,
+                              uint32_t n, const double *p3, double *xy, sq_error *err);
+
+/* A growing list of triangles (3 n ids in t). */
+typedef struct sq_param_tri_list {
+    uint32_t *t;
+    uint32_t n, cap;
+} sq_param_tri_list;
+
+/* Omega (O) triangulated for the overlay (sq_param_omega_tri.c): each cell
+ * (C's chords' rectangles; C NULL: the unit squares of O->cut) fanned from
+ * its centre, its sides split at every vertex of Omega on them and, on
+ * Omega's boundary, at the surface's boundary points, with graded layers
+ * where a side carries three points or more. Vertex ids: [0, nbl) the
+ * surface's boundary loop (uv buv0), [nbl, na) reserved for the surface's
+ * inner vertices, then Omega's inner vertices, the cells' centres, split
+ * midpoints and the layers' points. wb (O->cut.nv): the id of each of
+ * Omega's boundary vertices (SQ_NONE elsewhere); oseq: Omega's boundary
+ * halfedges in order; bstart[i]: the id where boundary halfedge i starts.
+ * Out: *nv_out ids, *uv_out their uv (2 per id; caller frees), triangles
+ * appended to bt. */
+sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *C, uint32_t nbl, uint32_t na,
+                                       const uint32_t *wb, const uint32_t *oseq, const uint32_t *bstart,
+                                       const double *buv0, uint32_t *nv_out, double **uv_out,
+                                       sq_param_tri_list *bt, sq_error *err);
 
 #endif
