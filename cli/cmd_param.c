@@ -313,8 +313,10 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
         printf("; valence:count)\n");
     }
     printf("attempt        %u (cut-graph seed %llu, %s)\n", s->attempts, (unsigned long long)s->seed_used,
-           !s->guided ? "unguided" : s->surface_tree ? "guided (seed 9.2), cone tree from the surface (seed 9.4)"
-                                                     : "guided (seed 9.2), cone tree from the domain");
+           !s->guided      ? "unguided"
+           : s->tree_pair  ? "guided (seed 9.2), one plane cone tree grown on the surface and in Q at once (tree pair)"
+           : s->surface_tree ? "guided (seed 9.2), cone tree from the surface (seed 9.4)"
+                             : "guided (seed 9.2), cone tree from the domain");
     printf("cut graph      %u edges\n", s->cut_edges);
     printf("domain         %llu quads before padding + %llu padding = %llu\n",
            (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,

@@ -169,6 +169,17 @@ want='not j["tree_pair"]' passes_at eight 1
 # --tree pair-exact with --interior overlay-chords (the fallback's choices)
 # on eight: the exact tree, Omega's rectangles first
 want='j["tree_pair"] and j["interior"]=="overlay"' passes_at eight 1 --tree pair-exact --interior overlay-chords
+# the text summary names the tree that was built (pair, or the surface's)
+for t in pair-exact surface; do
+  "$bin" param "$shared/data/mpz/eight.obj" --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/tree_$t.obj" \
+    --tree "$t" --attempts 1 >"$tmp/tree_$t.txt" 2>&1
+done
+if grep -q "^attempt .*one plane cone tree grown on the surface and in Q at once (tree pair)" "$tmp/tree_pair-exact.txt" \
+    && grep -q "^attempt .*cone tree from the surface (seed 9.4)" "$tmp/tree_surface.txt"; then
+  ok
+else
+  bad "eight: the summary does not name the tree built: $(grep '^attempt' "$tmp"/tree_*.txt)"
+fi
 
 # --- the genus-1 fallback (default --fallback auto): mpz/elk, where every
 # attempt with the default choices fails, passes with the guided domain, the
