@@ -7,6 +7,7 @@
 
 #include <assert.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -804,13 +805,14 @@ static double ang_diff(double a, double b)
 
 /* The domain again with another side correspondence (genus >= 2) or
  * gluing of the two pieces (genus 1), `offset`, its metapolygon from
- * Algorithm 1's recorded glue edges (no layouts). *out: NULL when that
- * offset has no padding solution or needs a slide. */
+ * Algorithm 1's recorded glue edges (no layouts; the caller sets
+ * c->glue.chosen[0] to SQ_NONE first). *out: NULL when that offset has no
+ * padding solution or needs a slide. Reads c only (errors to c->err), so
+ * threads with their own err may share it. */
 static sq_status rebuild_at(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt,
                             uint32_t offset, sq_domain **out)
 {
     *out = NULL;
-    c->glue.chosen[0] = SQ_NONE;
     sq_build_options again;
     memset(&again, 0, sizeof again);
     again.glue_he = c->glue.chosen;
@@ -874,6 +876,7 @@ static sq_status align_corners(ctx *c, const int32_t *val, uint32_t nc, const sq
         while (j > 0 && cost[ord[j - 1]] > cost[o]) ord[j] = ord[j - 1], j--;
         ord[j] = o;
     }
+    c->glue.chosen[0] = SQ_NONE; /* rebuild_at's glue edges from step 1 on */
     for (uint32_t t = 0; t < k && st == SQ_OK; t++) {
         uint32_t o = ord[t];
         if (o == D->offset) break; /* the current domain is the best */
@@ -945,6 +948,38 @@ static double genus1_fit(ctx *c, uint32_t nt, uint32_t *r_out, int *swap, sq_sta
  * rebuilt from Algorithm 1's recorded glue edges, and of the cyclic side
  * correspondences with the cut surface, the pair that fits the surface
  * best (genus1_fit); T's two cones are matched to theirs by position. */
+/* align_genus1's six gluings, shared by its two threads: offset p rebuilt
+ * and fitted into D2[p], fit[p], r[p], swap[p], st[p] (errors in err[p]). */
+typedef struct genus1_jobs {
+    const ctx *c;
+    const int32_t *val;
+    uint32_t nc, nt, skip;
+    const sq_domain_options *dopt;
+    sq_domain *D2[6];
+    double fit[6];
+    uint32_t r[6];
+    int swap[6];
+    sq_status st[6];
+    sq_error err[6];
+    _Atomic uint32_t next;
+} genus1_jobs;
+
+static void *genus1_worker(void *arg)
+{
+    genus1_jobs *J = arg;
+    for (uint32_t p; (p = atomic_fetch_add(&J->next, 1)) < 6;) {
+        J->D2[p] = NULL, J->fit[p] = HUGE_VAL, J->st[p] = SQ_OK, J->r[p] = 0, J->swap[p] = 0;
+        if (p == J->skip) continue;
+        ctx c2 = *J->c; /* its own error and domain; the rest read only */
+        c2.err = &J->err[p];
+        J->st[p] = rebuild_at(&c2, J->val, J->nc, J->dopt, p, &J->D2[p]);
+        if (J->st[p] || !J->D2[p]) continue;
+        c2.D = J->D2[p];
+        J->fit[p] = genus1_fit(&c2, J->nt, &J->r[p], &J->swap[p], &J->st[p]);
+    }
+    return NULL;
+}
+
 static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt)
 {
     const uint32_t nt = dopt->g1_split;
@@ -954,22 +989,34 @@ static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_
     double best = genus1_fit(c, nt, &r, &swap, &st);
     if (st) return st;
     if (best < HUGE_VAL) best_r = r, best_swap = swap;
+    /* the other five gluings of the meta-2-gon, two at a time (each a
+     * domain build and a CHOLMOD layout of Q; the same result as one after
+     * another: the first best in offset order, the first error) */
+    genus1_jobs *J = calloc(1, sizeof *J);
+    if (!J) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    J->c = c, J->val = val, J->nc = nc, J->nt = nt, J->skip = c->D->offset, J->dopt = dopt;
+    atomic_init(&J->next, 0);
+    c->glue.chosen[0] = SQ_NONE; /* rebuild_at's glue edges from step 1 on */
+    pthread_t th;
+    int threaded = pthread_create(&th, NULL, genus1_worker, J) == 0;
+    genus1_worker(J);
+    if (threaded) pthread_join(th, NULL);
+    uint32_t pick = SQ_NONE;
     for (uint32_t p = 0; p < 6 && st == SQ_OK; p++) {
-        if (p == c->D->offset) continue;
-        sq_domain *D2 = NULL, *keep = c->D;
-        st = rebuild_at(c, val, nc, dopt, p, &D2);
-        if (st || !D2) continue;
-        c->D = D2;
-        double fit = genus1_fit(c, nt, &r, &swap, &st);
-        c->D = keep;
-        if (st == SQ_OK && fit < best) {
-            best = fit, best_r = r, best_swap = swap;
-            domain_replace(c, D2);
-        } else {
-            sq_domain_free(D2);
-            free(D2);
+        if (J->st[p]) {
+            st = J->st[p];
+            if (c->err) *c->err = J->err[p];
+        } else if (J->D2[p] && J->fit[p] < best) {
+            best = J->fit[p], best_r = J->r[p], best_swap = J->swap[p], pick = p;
         }
     }
+    for (uint32_t p = 0; p < 6; p++)
+        if (J->D2[p] && (p != pick || st)) {
+            sq_domain_free(J->D2[p]);
+            free(J->D2[p]);
+        }
+    if (st == SQ_OK && pick != SQ_NONE) domain_replace(c, J->D2[pick]);
+    free(J);
     if (st) return st;
     c->r = best_r;
     if (best_swap) {
