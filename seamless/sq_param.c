@@ -949,7 +949,8 @@ static double genus1_fit(ctx *c, uint32_t nt, uint32_t *r_out, int *swap, sq_sta
  * correspondences with the cut surface, the pair that fits the surface
  * best (genus1_fit); T's two cones are matched to theirs by position. */
 /* align_genus1's six gluings, shared by its two threads: offset p rebuilt
- * and fitted into D2[p], fit[p], r[p], swap[p], st[p] (errors in err[p]). */
+ * (the current domain's own offset `skip` as it is) and fitted into D2[p]
+ * (NULL for `skip`), fit[p], r[p], swap[p], st[p] (errors in err[p]). */
 typedef struct genus1_jobs {
     const ctx *c;
     const int32_t *val;
@@ -968,13 +969,14 @@ static void *genus1_worker(void *arg)
 {
     genus1_jobs *J = arg;
     for (uint32_t p; (p = atomic_fetch_add(&J->next, 1)) < 6;) {
-        J->D2[p] = NULL, J->fit[p] = HUGE_VAL, J->st[p] = SQ_OK, J->r[p] = 0, J->swap[p] = 0;
-        if (p == J->skip) continue;
+        J->fit[p] = HUGE_VAL;
         ctx c2 = *J->c; /* its own error and domain; the rest read only */
         c2.err = &J->err[p];
-        J->st[p] = rebuild_at(&c2, J->val, J->nc, J->dopt, p, &J->D2[p]);
-        if (J->st[p] || !J->D2[p]) continue;
-        c2.D = J->D2[p];
+        if (p != J->skip) {
+            J->st[p] = rebuild_at(&c2, J->val, J->nc, J->dopt, p, &J->D2[p]);
+            if (J->st[p] || !J->D2[p]) continue;
+            c2.D = J->D2[p];
+        }
         J->fit[p] = genus1_fit(&c2, J->nt, &J->r[p], &J->swap[p], &J->st[p]);
     }
     return NULL;
@@ -982,27 +984,29 @@ static void *genus1_worker(void *arg)
 
 static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt)
 {
-    const uint32_t nt = dopt->g1_split;
-    uint32_t best_r = c->r, r = 0;
-    int best_swap = 0, swap = 0;
-    sq_status st = SQ_OK;
-    double best = genus1_fit(c, nt, &r, &swap, &st);
-    if (st) return st;
-    if (best < HUGE_VAL) best_r = r, best_swap = swap;
-    /* the other five gluings of the meta-2-gon, two at a time (each a
-     * domain build and a CHOLMOD layout of Q; the same result as one after
-     * another: the first best in offset order, the first error) */
+    /* the six gluings of the meta-2-gon, two at a time (each a CHOLMOD
+     * layout of Q, the five others after a domain build); the same choice
+     * as one after another: the current domain first, then the first best
+     * in offset order; the first error in that order */
     genus1_jobs *J = calloc(1, sizeof *J);
     if (!J) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-    J->c = c, J->val = val, J->nc = nc, J->nt = nt, J->skip = c->D->offset, J->dopt = dopt;
+    const uint32_t skip = c->D->offset;
+    assert(skip < 6); /* the torus domain's six sides */
+    J->c = c, J->val = val, J->nc = nc, J->nt = dopt->g1_split, J->skip = skip, J->dopt = dopt;
     atomic_init(&J->next, 0);
     c->glue.chosen[0] = SQ_NONE; /* rebuild_at's glue edges from step 1 on */
     pthread_t th;
     int threaded = pthread_create(&th, NULL, genus1_worker, J) == 0;
     genus1_worker(J);
     if (threaded) pthread_join(th, NULL);
-    uint32_t pick = SQ_NONE;
+    sq_status st = J->st[skip];
+    uint32_t best_r = c->r, pick = SQ_NONE;
+    int best_swap = 0;
+    double best = J->fit[skip];
+    if (st && c->err) *c->err = J->err[skip];
+    if (st == SQ_OK && best < HUGE_VAL) best_r = J->r[skip], best_swap = J->swap[skip];
     for (uint32_t p = 0; p < 6 && st == SQ_OK; p++) {
+        if (p == skip) continue;
         if (J->st[p]) {
             st = J->st[p];
             if (c->err) *c->err = J->err[p];
@@ -2544,7 +2548,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
                    l[2] * S->pos[3 * (size_t)a2s[t[2]] + d];
     }
     for (uint32_t k = 0; k < X.nx; k++) {
-        uint32_t h = X.x_ha[k], h1 = h - h % 3 + (h % 3 + 1) % 3;
+        uint32_t h = X.x_ha[k], h1 = sq_param_corner_next(h);
         const double *p0 = S->pos + 3 * (size_t)a2s[atri[h]], *p1 = S->pos + 3 * (size_t)a2s[atri[h1]];
         double t = X.x_ta[k], *p = P->pos + 3 * ((size_t)S->nv + nv - na + k);
         for (int d = 0; d < 3; d++) p[d] = (1 - t) * p0[d] + t * p1[d];
@@ -2561,7 +2565,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
                                        l[2] * buv[2 * (size_t)t[2] + d];
     }
     for (uint32_t k = 0; k < X.nx; k++) {
-        uint32_t h = X.x_hb[k], h1 = h - h % 3 + (h % 3 + 1) % 3;
+        uint32_t h = X.x_hb[k], h1 = sq_param_corner_next(h);
         const double *u0 = buv + 2 * (size_t)btri[h], *u1 = buv + 2 * (size_t)btri[h1];
         double t = X.x_tb[k];
         for (int d = 0; d < 2; d++) P->uv[2 * ((size_t)nv + k) + d] = (1 - t) * u0[d] + t * u1[d];

@@ -67,7 +67,7 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
     /* the seams, each edge once (from its lower vertex) */
     uint32_t nseam = 0;
     for (uint32_t k = 0; k < 3 * P->nf; k++) {
-        uint32_t a = P->tri[k], b = P->tri[k - k % 3 + (k % 3 + 1) % 3];
+        uint32_t a = P->tri[k], b = P->tri[sq_param_corner_next(k)];
         if (P->he_cut[k] == 1 && a < b) nseam++;
     }
     const uint32_t n = m->nf + nseam;
@@ -81,7 +81,7 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
     }
     nseam = 0;
     for (uint32_t k = 0; k < 3 * P->nf; k++) {
-        uint32_t a = P->tri[k], b = P->tri[k - k % 3 + (k % 3 + 1) % 3];
+        uint32_t a = P->tri[k], b = P->tri[sq_param_corner_next(k)];
         if (P->he_cut[k] == 1 && a < b) seam[nseam++] = k, deg[a]++, deg[b]++;
     }
     /* the bounding box's extent (a depth offset for the seams) */
@@ -149,7 +149,7 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
         }
         for (uint32_t i = 0; i < nseam; i++) {
             uint32_t e = seam[i];
-            const double *a = P->pos + 3 * (size_t)P->tri[e], *b = P->pos + 3 * (size_t)P->tri[e - e % 3 + (e % 3 + 1) % 3];
+            const double *a = P->pos + 3 * (size_t)P->tri[e], *b = P->pos + 3 * (size_t)P->tri[sq_param_corner_next(e)];
             /* in front of the triangles around it (their centroids lie
              * within about an edge length of its midpoint), behind the
              * surface further in front */
@@ -169,7 +169,7 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
                         PX(p0), PY(p0), PX(p1), PY(p1), PX(p2), PY(p2), g, g, g, g, g, g);
             } else {
                 uint32_t e = seam[x - m->nf];
-                const double *a = P->pos + 3 * (size_t)P->tri[e], *b = P->pos + 3 * (size_t)P->tri[e - e % 3 + (e % 3 + 1) % 3];
+                const double *a = P->pos + 3 * (size_t)P->tri[e], *b = P->pos + 3 * (size_t)P->tri[sq_param_corner_next(e)];
                 fprintf(out, "<path d=\"M%.1f %.1fL%.1f %.1f\" stroke=\"#d7191c\" stroke-width=\"1.6\" "
                              "stroke-linecap=\"round\"/>\n",
                         PX(a), PY(a), PX(b), PY(b));

@@ -24,7 +24,7 @@ int sq_param_pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin)
     edge_key *k = malloc(nh * sizeof *k);
     if (!k) return -1;
     for (size_t h = 0; h < nh; h++) {
-        uint32_t a = tri[h], b = tri[h - h % 3 + (h % 3 + 1) % 3];
+        uint32_t a = tri[h], b = tri[sq_param_corner_next((uint32_t)h)];
         k[h].key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
         k[h].h = (uint32_t)h;
         twin[h] = SQ_NONE;
@@ -67,13 +67,13 @@ sq_status sq_param_disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *
     for (size_t h = 0; h < nh; h++) {
         uint32_t v = tri[h];
         if (v < first || v >= first + n) continue;
-        size_t hn = h - h % 3 + (h % 3 + 1) % 3, hp = h - h % 3 + (h % 3 + 2) % 3;
+        uint32_t hn = sq_param_corner_next((uint32_t)h), hp = sq_param_corner_prev((uint32_t)h);
         uint32_t w = tri[hn], a = tri[hp], t = twin[h];
         if (t == SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "disk map: interior vertex %u on a boundary edge", v);
             goto done;
         }
-        uint32_t b = tri[t - t % 3 + (t % 3 + 2) % 3];
+        uint32_t b = tri[sq_param_corner_prev(t)];
         double wt = sq_mean_value_weight(p3 + 3 * (size_t)v, p3 + 3 * (size_t)w, p3 + 3 * (size_t)a,
                                          p3 + 3 * (size_t)b);
         diag[v - first] += wt;

@@ -37,6 +37,11 @@ const char *sq_param_valence_colour(int32_t k);
  * conformal_*; sq_param.c). */
 void sq_param_distortion(const sq_param *P, sq_param_stats *stats);
 
+/* The next and the previous corner of corner c in its triangle (corners
+ * 3 f, 3 f + 1, 3 f + 2; the edge from corner c runs to the next one). */
+static inline uint32_t sq_param_corner_next(uint32_t c) { return c - c % 3 + (c % 3 + 1) % 3; }
+static inline uint32_t sq_param_corner_prev(uint32_t c) { return c - c % 3 + (c % 3 + 2) % 3; }
+
 /* ---- step 7' (the overlay; sq_param.c) ---------------------------------- */
 
 /* Twins of a triangle list by vertex pairs (sorting): twin[3 f + i] is the
