@@ -22,6 +22,7 @@ void sq_tsurf_free(sq_tsurf *S)
     free(S->label);
     free(S->v_ncut);
     free(S->valence);
+    free(S->hvec);
     sq_tsurf_init(S);
 }
 
@@ -76,6 +77,11 @@ static int grow(sq_tsurf *S, uint32_t need_v, uint32_t need_f, uint32_t need_h)
         uint32_t *l = realloc(S->label, (size_t)c * sizeof *l);
         if (!l) return -1;
         S->label = l;
+        if (S->hvec) {
+            double *hv = realloc(S->hvec, 2 * (size_t)c * sizeof *hv);
+            if (!hv) return -1;
+            S->hvec = hv;
+        }
         S->cap_h = c;
     }
     return 0;
@@ -84,6 +90,7 @@ static int grow(sq_tsurf *S, uint32_t need_v, uint32_t need_f, uint32_t need_h)
 int sq_tsurf_copy(sq_tsurf *dst, const sq_tsurf *src)
 {
     sq_tsurf_free(dst);
+    if (src->hvec && !(dst->hvec = malloc(2 * sizeof *dst->hvec))) return -1;
     /* at least one of each, so that no array stays NULL */
     if (grow(dst, src->nv ? src->nv : 1, src->nf ? src->nf : 1, src->nh ? src->nh : 1)) {
         sq_tsurf_free(dst);
@@ -102,6 +109,7 @@ int sq_tsurf_copy(sq_tsurf *dst, const sq_tsurf *src)
     memcpy(dst->twin, src->twin, nh * sizeof *dst->twin);
     memcpy(dst->kind, src->kind, nh * sizeof *dst->kind);
     memcpy(dst->label, src->label, nh * sizeof *dst->label);
+    if (src->hvec) memcpy(dst->hvec, src->hvec, 2 * nh * sizeof *dst->hvec);
     dst->nv = src->nv, dst->nf = src->nf, dst->nh = src->nh, dst->nv_input = src->nv_input;
     return 0;
 }
@@ -198,6 +206,17 @@ uint32_t sq_tsurf_split_edge(sq_tsurf *S, uint32_t h, double t)
     S->f_he[F2] = z0;
     S->forig[F1] = S->forig[f], S->forig[F2] = S->forig[f2];
     S->v_he[m] = y0;
+    if (S->hvec) {
+        /* halves of h and g in their faces' frames; the new edges m-c and
+         * m-d: c - m = (c - a) - (b - a) / 2, the same on g's side */
+        double *V = S->hvec;
+        for (int q = 0; q < 2; q++) {
+            V[2 * h + q] *= 0.5, V[2 * y0 + q] = V[2 * h + q];
+            V[2 * g + q] *= 0.5, V[2 * z0 + q] = V[2 * g + q];
+            V[2 * x1 + q] = -V[2 * hp + q] - V[2 * h + q], V[2 * y2 + q] = -V[2 * x1 + q];
+            V[2 * x2 + q] = -V[2 * gp + q] - V[2 * g + q], V[2 * z2 + q] = -V[2 * x2 + q];
+        }
+    }
     return m;
 }
 
@@ -654,6 +673,18 @@ sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind
             if (is_target_cone(S, v, target_valence, cone_free)) goal[S->face[h]] = 1;
         }
     }
+    /* Two passes. The search is over faces, so a face holding the target
+     * that is first reached across an edge at the target is never entered
+     * again across the edge opposite it, which the route must: where the
+     * first pass finds nothing for that reason, the second enters such
+     * faces only across that edge. */
+    uint32_t endf = SQ_NONE;
+    for (int strict = 0; strict < 2 && endf == SQ_NONE; strict++) {
+    if (strict) {
+        if (kind == SQ_ROUTE_FREE) break;
+        for (uint32_t f = 0; f < nf; f++) dist[f] = INFINITY, pred[f] = SQ_NONE;
+        H.n = 0;
+    }
     /* start faces: the sector's fan; the first crossing is the edge
      * opposite src */
     {
@@ -669,7 +700,6 @@ sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind
             g = sq_ts_ccw(S, g);
         } while (!S->kind[g] && g != start);
     }
-    uint32_t endf = SQ_NONE;
     while (H.n) {
         uint32_t f;
         double d;
@@ -695,6 +725,12 @@ sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind
             if (pred[f] == SQ_NONE && (S->vert[h] == src || sq_ts_head(S, h) == src)) continue;
             if (pred[f] != SQ_NONE && h == pred[f]) continue;
             uint32_t t = S->twin[h], g = S->face[t];
+            if (strict && goal[g]) {
+                uint32_t opp = S->vert[sq_ts_prev(S, t)];
+                if (kind == SQ_ROUTE_SECTOR ? opp != S->vert[target_sector]
+                                            : !is_target_cone(S, opp, target_valence, cone_free))
+                    continue;
+            }
             double e = d + cdist(cen + 3 * f, cen + 3 * g);
             if (e < dist[g]) {
                 dist[g] = e, pred[g] = t;
@@ -704,6 +740,7 @@ sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind
                 }
             }
         }
+    }
     }
     if (endf == SQ_NONE) {
         st = sq_error_set(err, SQ_ERR_INTERNAL, "no route through faces from vertex %u", src);

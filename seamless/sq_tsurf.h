@@ -52,6 +52,10 @@ typedef struct sq_tsurf {
                        /* (SQ_NONE when uncut)                           */
     uint32_t *v_ncut;  /* cap_v: cut edges at the vertex                 */
     int32_t *valence;  /* cap_v: prescribed valence (4 = regular)        */
+    double *hvec;      /* 2 cap_h or NULL: for a flat surface (Q         */
+                       /* triangulated, sq_qtri.h), each halfedge's      */
+                       /* vector in its face's frame; sq_tsurf_split_edge */
+                       /* keeps it exact (halves and sums of dyadics)    */
 } sq_tsurf;
 
 static inline uint32_t sq_ts_next(const sq_tsurf *S, uint32_t h) { return S->next[h]; }
