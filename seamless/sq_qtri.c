@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sq_predicates.h"
 #include "sq_soup.h"
 
 void sq_qtri_init(sq_qtri *T)
@@ -535,4 +536,108 @@ done:
     free(R.step_of), free(R.snode), free(R.list);
     free(path), free(side), free(cone_free);
     return st;
+}
+
+/* ---- Omega's layout ----------------------------------------------------- */
+
+/* v turned by k x 90 degrees counterclockwise (exact) */
+static void rot90(uint8_t k, const double v[2], double out[2])
+{
+    double x = v[0], y = v[1];
+    for (uint8_t i = 0; i < (k & 3); i++) {
+        double t = x;
+        x = -y, y = t;
+    }
+    out[0] = x, out[1] = y;
+}
+
+/* lays out face f with its halfedge h's origin at P and rotation k */
+static void place_face(const sq_tsurf *S, uint32_t h, const double P[2], uint8_t k, double *cxy)
+{
+    double p[2] = {P[0], P[1]};
+    for (int i = 0; i < 3; i++, h = S->next[h]) {
+        cxy[2 * h] = p[0], cxy[2 * h + 1] = p[1];
+        double d[2];
+        rot90(k, S->hvec + 2 * h, d);
+        p[0] += d[0], p[1] += d[1];
+    }
+}
+
+sq_status sq_qtri_layout(const sq_qtri *T, double *cxy, uint8_t *f_rot, sq_error *err)
+{
+    const sq_tsurf *S = &T->S;
+    uint32_t *queue = malloc(((size_t)S->nf + 1) * sizeof *queue);
+    uint8_t *seen = calloc((size_t)S->nf + 1, 1);
+    sq_status st = SQ_OK;
+    if (!queue || !seen) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega layout)");
+        goto done;
+    }
+    const double origin[2] = {0, 0};
+    uint32_t nq = 0;
+    place_face(S, S->f_he[0], origin, 0, cxy);
+    f_rot[0] = 0, seen[0] = 1, queue[nq++] = 0;
+    for (uint32_t i = 0; i < nq && st == SQ_OK; i++) {
+        uint32_t f = queue[i], h = S->f_he[f];
+        for (int e = 0; e < 3; e++, h = S->next[h]) {
+            if (S->kind[h]) continue;
+            uint32_t t = S->twin[h], g = S->face[t], hn = S->next[h];
+            const double *A = cxy + 2 * h, *B = cxy + 2 * hn; /* h: A -> B */
+            if (seen[g]) {
+                /* closing: g's copies of B and A */
+                const double *gb = cxy + 2 * t, *ga = cxy + 2 * S->next[t];
+                if (gb[0] != B[0] || gb[1] != B[1] || ga[0] != A[0] || ga[1] != A[1])
+                    st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega layout: edge %u-%u does not close", S->vert[h],
+                                      S->vert[hn]);
+                continue;
+            }
+            /* the turn of g's frame that maps its vector of t onto A - B */
+            double want[2] = {A[0] - B[0], A[1] - B[1]}, d[2];
+            uint8_t k = 0;
+            for (; k < 4; k++) {
+                rot90(k, S->hvec + 2 * t, d);
+                if (d[0] == want[0] && d[1] == want[1]) break;
+            }
+            if (k == 4) {
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega layout: edge %u-%u is no 90-degree turn of its twin",
+                                  S->vert[h], S->vert[hn]);
+                break;
+            }
+            place_face(S, t, B, k, cxy);
+            f_rot[g] = k, seen[g] = 1, queue[nq++] = g;
+        }
+    }
+    if (st == SQ_OK && nq != S->nf)
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega layout: %u of %u faces reached (the cut is no disk)", nq, S->nf);
+    for (uint32_t f = 0; f < S->nf && st == SQ_OK; f++) {
+        uint32_t h = S->f_he[f];
+        if (sq_orient2d(cxy + 2 * h, cxy + 2 * S->next[h], cxy + 2 * S->next[S->next[h]]) <= 0)
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega layout: face %u is not positively oriented", f);
+    }
+done:
+    free(queue), free(seen);
+    return st;
+}
+
+int sq_qtri_transition(const sq_qtri *T, const double *cxy, uint32_t h, uint8_t *rot, double t[2])
+{
+    const sq_tsurf *S = &T->S;
+    uint32_t g = S->twin[h];
+    /* h: a -> b in its face, g: b -> a in the other */
+    const double *a = cxy + 2 * h, *b = cxy + 2 * S->next[h];
+    const double *b2 = cxy + 2 * g, *a2 = cxy + 2 * S->next[g];
+    double u[2] = {b[0] - a[0], b[1] - a[1]}, w[2] = {b2[0] - a2[0], b2[1] - a2[1]}, d[2];
+    for (uint8_t k = 0; k < 4; k++) {
+        rot90(k, u, d);
+        if (d[0] != w[0] || d[1] != w[1]) continue;
+        double ra[2];
+        rot90(k, a, ra);
+        t[0] = a2[0] - ra[0], t[1] = a2[1] - ra[1];
+        double rb[2];
+        rot90(k, b, rb);
+        if (rb[0] + t[0] != b2[0] || rb[1] + t[1] != b2[1]) return 0;
+        *rot = k;
+        return 1;
+    }
+    return 0;
 }

@@ -246,9 +246,37 @@ static void run_model(const char *name, uint64_t seed)
             }
             assert_true(sx == 0 && sy == 0);
         }
+        /* Omega: the cut disk laid out exactly; across every cut edge a
+         * turn by a multiple of 90 degrees and an integer translation, the
+         * same along every tree segment and every side (but the root's) */
+        double *cxy = malloc(2 * S->nh * sizeof *cxy);
+        uint8_t *frot = malloc(S->nf);
+        if (sq_qtri_layout(&T, cxy, frot, &err)) fail_msg("%s seed %llu: %s", name, (unsigned long long)seed, err.msg);
+        uint32_t ncut = 0, changes = 0;
+        for (uint32_t h = 0; h < S->nh; h++) {
+            if (!S->kind[h]) continue;
+            uint8_t rot, rot2;
+            double t[2], t2[2];
+            assert_true(sq_qtri_transition(&T, cxy, h, &rot, t));
+            assert_true(t[0] == nearbyint(t[0]) && t[1] == nearbyint(t[1]));
+            ncut++;
+            /* the next cut edge along the same label, where the vertex
+             * between is no node */
+            uint32_t b = sq_ts_head(S, h), g = sq_tsurf_next_boundary(S, h);
+            if (S->label[g] != S->label[h]) continue;
+            int node = S->valence[b] != 4 || b == T.root;
+            for (uint32_t j = 1; j < n; j++) node |= T.att[j] == b;
+            if (node) continue;
+            assert_true(sq_qtri_transition(&T, cxy, g, &rot2, t2));
+            if (rot2 != rot || t2[0] != t[0] || t2[1] != t[1]) changes++;
+        }
+        /* (the root, where its side's transition changes, is a node, and
+         * a side's two ends are corners, where the label changes) */
+        assert_int_equal(changes, 0);
+        free(cxy), free(frot);
         print_message("%s seed %llu: %u cones, %u nodes, tree %u vertices, Q triangulated %u -> %u vertices "
-                      "(%llu Steiner)\n",
-                      name, (unsigned long long)seed, n, nodes, ntree, nv0, S->nv, (unsigned long long)T.splits);
+                      "(%llu Steiner), %u cut halfedges, Omega laid out\n",
+                      name, (unsigned long long)seed, n, nodes, ntree, nv0, S->nv, (unsigned long long)T.splits, ncut);
         free(sstep);
         sq_qtri_free(&T);
     }
