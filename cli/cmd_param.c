@@ -116,7 +116,11 @@ static void help(FILE *f)
             "                      pair (experimental) grows both trees at once as one\n"
             "                      plane tree, Q refined where it has no room (where\n"
             "                      that fails: the surface tree); pair-exact: the same,\n"
-            "                      but the attempt fails where the exact tree does\n"
+            "                      but the attempt fails where the exact tree does;\n"
+            "                      qtri copies the surface tree into Q triangulated, with\n"
+            "                      edge splits where paths need room (seed 9.4), always\n"
+            "                      the same plane tree; Omega is then made of triangles\n"
+            "                      and the interior map is the overlay\n"
             "  --interior MODE     the interior map: cells cuts Omega into rectangles by\n"
             "                      chords replayed on the surface and maps each cell by\n"
             "                      Tutte (with --refine rounds); overlay maps the cut\n"
@@ -264,6 +268,8 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            s->surface_tree ? "true" : "false");
     printf("  \"interior\": \"%s\",\n  \"tree_pair\": %s,\n", s->overlay ? "overlay" : "cells",
            s->tree_pair ? "true" : "false");
+    printf("  \"tree_qtri\": %s,\n  \"qtri_verts\": %u,\n  \"qtri_steiner\": %u,\n", s->tree_qtri ? "true" : "false",
+           s->qtri_verts, s->qtri_steiner);
     printf("  \"fallback\": %s,\n", s->fallback ? "true" : "false");
     printf("  \"simplified\": %u,\n  \"faces_unsimplified\": %u,\n", s->simplified, s->faces_unsimplified);
     printf("  \"refine_rounds\": %u,\n  \"cells_halved\": %u,\n", s->rounds, s->cells_refined);
@@ -314,6 +320,7 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
     }
     printf("attempt        %u (cut-graph seed %llu, %s)\n", s->attempts, (unsigned long long)s->seed_used,
            !s->guided      ? "unguided"
+           : s->tree_qtri  ? "guided (seed 9.2), the surface cone tree copied into Q triangulated (tree qtri)"
            : s->tree_pair  ? "guided (seed 9.2), one plane cone tree grown on the surface and in Q at once (tree pair)"
            : s->surface_tree ? "guided (seed 9.2), cone tree from the surface (seed 9.4)"
                              : "guided (seed 9.2), cone tree from the domain");
@@ -473,8 +480,9 @@ int sq_cmd_param(int argc, char **argv)
             else if (!strcmp(arg, "domain")) tree = SQ_TREE_DOMAIN;
             else if (!strcmp(arg, "pair")) tree = SQ_TREE_PAIR;
             else if (!strcmp(arg, "pair-exact")) tree = SQ_TREE_PAIR_EXACT;
+            else if (!strcmp(arg, "qtri")) tree = SQ_TREE_QTRI;
             else {
-                fprintf(stderr, "seamquad param: --tree takes alternate, surface, domain, pair or pair-exact, got '%s'\n", arg);
+                fprintf(stderr, "seamquad param: --tree takes alternate, surface, domain, pair, pair-exact or qtri, got '%s'\n", arg);
                 return SQ_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--interior") && has) {

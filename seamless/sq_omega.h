@@ -159,6 +159,12 @@ typedef struct sq_omega {
     uint32_t root_pos;       /* < side_len) of side root_side of Q, counted */
                              /* from the side's first corner                */
     int64_t xmin, ymin, xmax, ymax; /* bounding box of the layout          */
+    int xy_shift;            /* xy, label_t and the box are in units of     */
+                             /* 2^-xy_shift: 0 for Q's unit squares; > 0    */
+                             /* for Omega from Q triangulated with midpoint */
+                             /* splits (sq_qtri_omega: faces are triangles, */
+                             /* f_dir is NULL, v_qvert and he_qhe name the  */
+                             /* triangulated Q's vertices and halfedges)    */
 } sq_omega;
 
 void sq_omega_init(sq_omega *O);

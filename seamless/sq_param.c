@@ -18,6 +18,7 @@
 #include "sq_guide.h"
 #include "sq_mean_value.h"
 #include "sq_omega.h"
+#include "sq_qtri.h"
 #include "sq_omega_cells.h"
 #include "sq_overlay.h"
 #include "sq_predicates.h"
@@ -99,6 +100,12 @@ typedef struct ctx {
                                 /* interior map of a round is done; else NULL */
     uint32_t *face_limit;       /* O->cut.nf or NULL: cell size limits per quad */
                                 /* of Omega (step 7c, refinement rounds)       */
+    int qtri;                   /* SQ_TREE_QTRI: Omega from Q triangulated     */
+    uint32_t qt_nseg;           /* its tree segments (O's labels k + 2s, +1)   */
+    uint32_t *qt_from, *qt_to;  /* qt_nseg: the surface nodes each joins, the  */
+                                /* one nearer the root first                   */
+    uint32_t qt_verts, qt_steiner; /* Q triangulated: vertices, Steiner ones   */
+    uint32_t qt_edges;          /* its tree's edges                            */
 } ctx;
 
 static void progress(ctx *c, const char *stage, double f)
@@ -211,9 +218,12 @@ static void transition(const sq_omega *O, uint32_t l, const double x[2], double 
         double t = a;
         a = -b, b = t;
     }
-    y[0] = a + (double)O->label_t[2 * l];
-    y[1] = b + (double)O->label_t[2 * l + 1];
+    y[0] = a + ldexp((double)O->label_t[2 * l], -O->xy_shift);
+    y[1] = b + ldexp((double)O->label_t[2 * l + 1], -O->xy_shift);
 }
+
+/* segments of the cone tree (Q's, or the triangulated Q's) */
+static uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c->T->nseg; }
 
 /* ---- step 1-3: cut graph, domain, Omega ------------------------------ */
 
@@ -384,8 +394,11 @@ enum { TREE_REFINE = 2, ROOT_TRIES = 3 };
 
 static void domain_replace(ctx *c, sq_domain *D);
 
+static sq_status qtri_tree(ctx *c);
+
 static sq_status guided_tree(ctx *c)
 {
+    if (c->opt->tree == SQ_TREE_QTRI) return qtri_tree(c);
     const sq_metapolygon *Q = &c->D->quads;
     uint32_t n = c->D->ncones;
     size_t n1 = (size_t)n + 1;
@@ -551,6 +564,82 @@ static sq_status guided_root(ctx *c)
     return st;
 }
 
+/* SQ_TREE_QTRI (seed 9.4 as the seed does it): the surface tree and its
+ * root path, copied into Q triangulated with room made by edge splits
+ * along the paths (sq_qtri_replicate: the same plane tree, always), and
+ * Omega laid out from that (sq_qtri_omega). The attempt fails
+ * (SQ_ERR_SOLVER) where the surface tree leaves a cone unjoined. */
+static sq_status qtri_tree(ctx *c)
+{
+    const sq_metapolygon *Q = &c->D->quads;
+    const uint32_t n = c->D->ncones;
+    const size_t n1 = (size_t)n + 1;
+    uint32_t *qv = malloc(n1 * sizeof *qv), *att = malloc(n1 * sizeof *att), *sv = malloc(n1 * sizeof *sv);
+    double *frac = malloc(n1 * sizeof *frac), *xy = malloc((2 * (size_t)Q->nv + 2) * sizeof *xy);
+    uint8_t *side = malloc(n1);
+    uint32_t *qfrom = NULL, *qto = NULL, *node = NULL;
+    sq_qtri T;
+    sq_qtri_init(&T);
+    c->qtri = 1;
+    c->s_tree_next = malloc(((size_t)c->m->nv + 1) * sizeof *c->s_tree_next);
+    sq_status st = SQ_OK;
+    if (!qv || !att || !sv || !frac || !xy || !side || !c->s_tree_next)
+        st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    if (st == SQ_OK) st = step_q_vertices(c, qv);
+    if (st == SQ_OK)
+        st = sq_guide_surface_tree(c->m, &c->G, n, c->step_vertex, att, frac, side, sv, c->s_tree_next, c->err);
+    for (uint32_t j = 1; st == SQ_OK && j < n; j++)
+        if (att[j] == SQ_NONE)
+            st = sq_error_set(c->err, SQ_ERR_SOLVER,
+                              "tree qtri: the surface tree cannot join the cone at vertex %u (walled in by the cut)",
+                              c->step_vertex[j]);
+    /* seed 9.4: the root path from the cone nearest the circle */
+    uint32_t rs = 0;
+    double far = -1;
+    for (uint32_t j = 0; j < n; j++) {
+        double r = hypot(c->step_xy[2 * j], c->step_xy[2 * j + 1]);
+        if (r > far) far = r, rs = j;
+    }
+    sq_guide_root root = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
+    if (st == SQ_OK)
+        st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, c->s_tree_next, c->s_tree_next, &root, c->err);
+    if (st == SQ_OK && root.vertex == SQ_NONE)
+        st = sq_error_set(c->err, SQ_ERR_SOLVER, "tree qtri: no root path from the cone at vertex %u",
+                          c->step_vertex[rs]);
+    if (st == SQ_OK) st = sq_guide_metapolygon_layout(Q, c->step_xy, n, qv, xy, c->err);
+    if (st == SQ_OK) st = sq_qtri_build(c->D, xy, &T, c->err);
+    if (st == SQ_OK)
+        st = sq_qtri_replicate(&T, c->D, c->m, &c->G, n, c->step_vertex, qv, c->s_tree_next, sv, &root,
+                               q_side_of_surface(c, root.side), c->err);
+    if (st == SQ_OK) st = sq_qtri_omega(&T, c->D, c->O, &c->qt_nseg, &qfrom, &qto, c->err);
+    /* the segments' ends as surface vertices */
+    if (st == SQ_OK) {
+        node = malloc((size_t)T.S.nv * sizeof *node);
+        c->qt_from = malloc(((size_t)c->qt_nseg + 1) * sizeof *c->qt_from);
+        c->qt_to = malloc(((size_t)c->qt_nseg + 1) * sizeof *c->qt_to);
+        if (!node || !c->qt_from || !c->qt_to) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+    }
+    if (st == SQ_OK) {
+        for (uint32_t v = 0; v < T.S.nv; v++) node[v] = SQ_NONE;
+        for (uint32_t j = 0; j < n; j++) {
+            node[T.cone[j]] = c->step_vertex[j];
+            if (j && T.att[j] != SQ_NONE) node[T.att[j]] = sv[j];
+        }
+        node[T.root] = root.vertex;
+        for (uint32_t s = 0; s < c->qt_nseg && st == SQ_OK; s++) {
+            c->qt_from[s] = node[qfrom[s]], c->qt_to[s] = node[qto[s]];
+            if (c->qt_from[s] == SQ_NONE || c->qt_to[s] == SQ_NONE)
+                st = sq_error_set(c->err, SQ_ERR_INTERNAL, "tree qtri: segment %u ends at no surface node", s);
+        }
+    }
+    if (st == SQ_OK) c->root_surface = root.vertex, c->root_step = rs, c->tree_exact = 1;
+    c->qt_verts = T.S.nv, c->qt_steiner = (uint32_t)T.splits, c->qt_edges = 0;
+    for (uint32_t h = 0; h < T.S.nh; h++) c->qt_edges += T.S.kind[h] && T.S.label[h] == SQ_NONE && h < T.S.twin[h];
+    sq_qtri_free(&T);
+    free(qv), free(att), free(sv), free(frac), free(xy), free(side), free(qfrom), free(qto), free(node);
+    return st;
+}
+
 static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st_out)
 {
     const sq_mesh *m = c->m;
@@ -631,10 +720,11 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     if (st_out) st_out->surface_tree = st == SQ_OK;
     /* the surface tree could not be copied: Q's own tree, unless the exact
      * copy was asked for (SQ_TREE_PAIR_EXACT: the attempt fails) */
-    if (st == SQ_ERR_SOLVER && !(c->step_vertex && c->opt->tree == SQ_TREE_PAIR_EXACT))
+    if (st == SQ_ERR_SOLVER &&
+        !(c->step_vertex && (c->opt->tree == SQ_TREE_PAIR_EXACT || c->opt->tree == SQ_TREE_QTRI)))
         st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
-    if (st == SQ_OK) st = sq_omega_build(c->D, c->T, c->O, err);
-    if (st == SQ_OK && c->s_tree_next && !c->tree_exact) st = guided_root(c);
+    if (st == SQ_OK && !c->qtri) st = sq_omega_build(c->D, c->T, c->O, err);
+    if (st == SQ_OK && c->s_tree_next && !c->tree_exact && !c->qtri) st = guided_root(c);
     if (st) goto done;
     double t3 = sq_now();
     if (st_out) {
@@ -643,8 +733,8 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
         st_out->cut_edges = c->G.ncut_edges;
         st_out->quads_unpadded = c->D->quads_unpadded;
         st_out->quads_added = c->D->quads_added;
-        st_out->tree_edges = c->T->nedges;
-        st_out->tree_segments = c->T->nseg;
+        st_out->tree_edges = c->qtri ? c->qt_edges : c->T->nedges;
+        st_out->tree_segments = tree_nseg(c);
         st_out->t_cut = t1 - t0;
         st_out->t_domain = t2 - t1;
         st_out->t_omega = t3 - t2;
@@ -711,7 +801,7 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
         /* the root is Q's corner qs = the start of counterclockwise side
          * (k - (qs + r)) mod k; no side is split (the genus-0 slit) */
         uint32_t sc = surface_corner_of_q(c, qs);
-        if (O->nlabels != k + 2 * c->T->nseg)
+        if (O->nlabels != k + 2 * tree_nseg(c))
             return sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega splits a side at a corner root");
         *root_he = hmap[G->side_he[G->side_off[sc]]];
         return SQ_OK;
@@ -744,7 +834,7 @@ static sq_status cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he)
             if (d < best) best = d, ir = e;
         }
     }
-    uint32_t lr = k + 2 * c->T->nseg;
+    uint32_t lr = k + 2 * tree_nseg(c);
     if (O->nlabels != lr + 2 || O->label_partner[lr] != lr + 1) {
         free(side);
         return sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega has no root-split labels");
@@ -1351,6 +1441,66 @@ done:
     return st;
 }
 
+/* SQ_TREE_QTRI: the surface tree itself is the cut, no routing: each
+ * segment of Omega's tree is the surface tree's path between the two
+ * surface nodes it joins (the same plane tree), labelled as Omega labels
+ * it: k + 2s on the halfedges walked away from the root, k + 2s + 1 on
+ * their twins. */
+static sq_status qtri_surface_tree(ctx *c)
+{
+    sq_tsurf *S = &c->S;
+    const sq_mesh *m = c->m;
+    const uint32_t *nx = c->s_tree_next, nv = m->nv;
+    uint32_t *par = malloc((size_t)nv * sizeof *par), *queue = malloc((size_t)nv * sizeof *queue);
+    uint32_t *list = malloc(((size_t)nv + 1) * sizeof *list);
+    sq_status st = SQ_OK;
+    if (!par || !queue || !list || c->root_surface == SQ_NONE) {
+        st = par && queue && list ? sq_error_set(c->err, SQ_ERR_INTERNAL, "tree qtri: no surface root")
+                                  : sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t v = 0; v < nv; v++) par[v] = SQ_NONE;
+    uint32_t nq = 0;
+    par[c->root_surface] = c->root_surface, queue[nq++] = c->root_surface;
+    for (uint32_t i = 0; i < nq; i++) {
+        uint32_t x = queue[i], h0 = m->v_he[x], h = h0;
+        do {
+            uint32_t w = m->he_vert[m->he_next[h]];
+            if ((nx[x] == w || nx[w] == x) && par[w] == SQ_NONE) par[w] = x, queue[nq++] = w;
+            h = m->he_twin[m->he_next[m->he_next[h]]];
+        } while (h != h0);
+    }
+    for (uint32_t s = 0; s < c->qt_nseg && st == SQ_OK; s++) {
+        uint32_t a = c->qt_from[s], cnt = 0;
+        for (uint32_t y = c->qt_to[s]; y != a; y = par[y]) {
+            if (y == SQ_NONE || par[y] == y || cnt >= nv) {
+                st = sq_error_set(c->err, SQ_ERR_INTERNAL, "tree qtri: surface segment %u does not reach its start", s);
+                break;
+            }
+            list[cnt++] = y;
+        }
+        if (st) break;
+        list[cnt++] = a;
+        for (uint32_t i = cnt - 1; i > 0 && st == SQ_OK; i--) {
+            uint32_t x = list[i], y = list[i - 1], h0 = S->v_he[x], h = h0, found = SQ_NONE;
+            do {
+                if (sq_ts_head(S, h) == y) found = h;
+                h = sq_ts_ccw(S, h);
+            } while (h != h0 && found == SQ_NONE);
+            if (found == SQ_NONE || S->kind[found]) {
+                st = sq_error_set(c->err, SQ_ERR_INTERNAL, "tree qtri: surface edge %u-%u of segment %u is %s", x,
+                                  y, s, found == SQ_NONE ? "missing" : "cut already");
+                break;
+            }
+            sq_tsurf_cut_edge(S, found, SQ_TS_SEAM, c->k + 2 * s, c->k + 2 * s + 1);
+        }
+    }
+    if (st == SQ_OK && sec_reserve(c)) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
+done:
+    free(par), free(queue), free(list);
+    return st;
+}
+
 /* ---- step 5: boundary map ---------------------------------------------- */
 
 typedef struct run {
@@ -1360,9 +1510,11 @@ typedef struct run {
 } run;
 
 /* Splits the polyline of halfedges he[0..n) at the arc-length fractions
- * j / N (j = 1 .. N-1), snapping to existing vertices that are close.
- * matched (N + 1 entries) receives the vertex for every j. */
-static sq_status split_polyline(ctx *c, const uint32_t *he, uint32_t n, uint32_t N, uint32_t *matched)
+ * j / N (j = 1 .. N-1; frac[j] instead when frac is not NULL), snapping to
+ * existing vertices that are close. matched (N + 1 entries) receives the
+ * vertex for every j. */
+static sq_status split_polyline(ctx *c, const uint32_t *he, uint32_t n, uint32_t N, const double *frac,
+                                uint32_t *matched)
 {
     sq_tsurf *S = &c->S;
     double *cum = malloc(((size_t)n + 1) * sizeof *cum);
@@ -1386,10 +1538,10 @@ static sq_status split_polyline(ctx *c, const uint32_t *he, uint32_t n, uint32_t
     }
     uint32_t i = 0;
     for (uint32_t j = 1; j < N; j++) {
-        double s = unit * j;
+        double s = frac ? L * frac[j] : unit * j;
         while (i + 1 < n && cum[i + 1] <= s) i++;
         tgt_edge[j] = i, tgt_s[j] = s;
-        double tol = 0.15 * unit;
+        double tol = frac ? 0.15 * L * fmin(frac[j] - frac[j - 1], frac[j + 1] - frac[j]) : 0.15 * unit;
         double d0 = s - cum[i], d1 = cum[i + 1] - s, li = cum[i + 1] - cum[i];
         if (d0 < tol && d0 < 0.3 * li && !used[i]) {
             used[i] = 1, matched[j] = S->vert[he[i]], tgt_edge[j] = SQ_NONE;
@@ -1432,14 +1584,14 @@ out:
  * grid points g[0..N] (integer); intermediate vertices by arc length,
  * snapped. uvv receives the UV index per polyline vertex (n + 1). */
 static sq_status polyline_uv(ctx *c, const uint32_t *he, uint32_t n, const uint32_t *matched,
-                             const int64_t *g, uint32_t N, uint32_t *uvv)
+                             const int64_t *g, double gs, uint32_t N, uint32_t *uvv)
 {
     sq_tsurf *S = &c->S;
     uint32_t j = 0, i0 = 0;
     for (uint32_t i = 0; i <= n; i++) {
         uint32_t v = i < n ? S->vert[he[i]] : sq_ts_head(S, he[n - 1]);
         if (j <= N && v == matched[j]) {
-            uvv[i] = uv_add(c, (double)g[2 * j], (double)g[2 * j + 1]);
+            uvv[i] = uv_add(c, (double)g[2 * j] * gs, (double)g[2 * j + 1] * gs);
             if (uvv[i] == SQ_NONE) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
             if (j > 0 && i > i0 + 1) { /* fill i0+1 .. i-1 */
                 double tot = 0;
@@ -1448,8 +1600,8 @@ static sq_status polyline_uv(ctx *c, const uint32_t *he, uint32_t n, const uint3
                 for (uint32_t q = i0 + 1; q < i; q++) {
                     acc += sq_ts_dist(S, S->vert[he[q - 1]], sq_ts_head(S, he[q - 1]));
                     double lam = acc / tot;
-                    double x = (double)g[2 * (j - 1)] + lam * (double)(g[2 * j] - g[2 * (j - 1)]);
-                    double y = (double)g[2 * (j - 1) + 1] + lam * (double)(g[2 * j + 1] - g[2 * (j - 1) + 1]);
+                    double x = ((double)g[2 * (j - 1)] + lam * (double)(g[2 * j] - g[2 * (j - 1)])) * gs;
+                    double y = ((double)g[2 * (j - 1) + 1] + lam * (double)(g[2 * j + 1] - g[2 * (j - 1) + 1])) * gs;
                     uvv[q] = uv_add(c, snap(c, x), snap(c, y));
                     if (uvv[q] == SQ_NONE) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
                 }
@@ -1491,6 +1643,8 @@ static sq_status boundary_map(ctx *c)
     run *orun = NULL, *mrun = NULL;
     uint32_t *pl = NULL, npl = 0, *matched = NULL, *uvv = NULL;
     int64_t *g = NULL;
+    double *gfrac = NULL;
+    const double gs = ldexp(1.0, -O->xy_shift);
     if (!oseq) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
     if (omega_boundary(W, oseq) == SQ_NONE) {
         st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", nb);
@@ -1579,9 +1733,9 @@ static sq_status boundary_map(ctx *c)
         }
         int e = 0;
         frexp((double)(2 * mx + 2), &e);
-        c->dyadic = 50 - e;
+        c->dyadic = 50 - e + O->xy_shift; /* xy in units of 2^-xy_shift */
         if (c->dyadic > 40) c->dyadic = 40;
-        if (c->dyadic < 8) {
+        if (c->dyadic < 8 || c->dyadic < O->xy_shift) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "domain too large for exact seams");
             goto done;
         }
@@ -1617,7 +1771,8 @@ static sq_status boundary_map(ctx *c)
             pl = malloc((size_t)mrun[i].mn * sizeof *pl);
             matched = realloc(matched, ((size_t)N + 1) * sizeof *matched);
             g = realloc(g, 2 * ((size_t)N + 1) * sizeof *g);
-            if (!pl || !matched || !g) {
+            gfrac = realloc(gfrac, ((size_t)N + 1) * sizeof *gfrac);
+            if (!pl || !matched || !g || !gfrac) {
                 st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                 break;
             }
@@ -1626,9 +1781,15 @@ static sq_status boundary_map(ctx *c)
                 uint32_t ov = j < N ? W->he_vert[f] : W->he_vert[W->he_next[f]];
                 g[2 * j] = O->xy[2 * ov], g[2 * j + 1] = O->xy[2 * ov + 1];
             }
+            /* Omega's run by arc length (unit edges on Q's grid; edges of any
+             * length from Q triangulated) */
+            gfrac[0] = 0;
+            for (uint32_t j = 1; j <= N; j++)
+                gfrac[j] = gfrac[j - 1] + hypot((double)(g[2 * j] - g[2 * j - 2]), (double)(g[2 * j + 1] - g[2 * j - 1]));
+            for (uint32_t j = 1; j <= N; j++) gfrac[j] /= gfrac[N];
             if (primary) {
                 for (uint32_t e = 0; e < mrun[i].mn; e++) pl[e] = mseq[(mrun[i].m0 + e) % nm];
-                st = split_polyline(c, pl, mrun[i].mn, N, matched);
+                st = split_polyline(c, pl, mrun[i].mn, N, O->xy_shift ? gfrac : NULL, matched);
                 if (st) break;
                 if (sec_reserve(c)) {
                     st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
@@ -1643,7 +1804,7 @@ static sq_status boundary_map(ctx *c)
                     st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                     break;
                 }
-                st = polyline_uv(c, pl, npl, matched, g, N, uvv);
+                st = polyline_uv(c, pl, npl, matched, g, gs, N, uvv);
                 if (st) break;
                 for (uint32_t q = 0; q < npl; q++) c->sec_uv[pl[q]] = uvv[q];
                 mlist[i] = pl, mlen[i] = npl, pl = NULL;
@@ -1670,7 +1831,7 @@ static sq_status boundary_map(ctx *c)
                 /* vertex q of this run is vertex npl - q of the partner */
                 for (uint32_t q = 0; q < npl; q++) {
                     if (q == 0) {
-                        c->sec_uv[pl[0]] = uv_add(c, (double)g[0], (double)g[1]);
+                        c->sec_uv[pl[0]] = uv_add(c, (double)g[0] * gs, (double)g[1] * gs);
                         continue;
                     }
                     uint32_t hq = mlist[ip][npl - q];
@@ -1708,6 +1869,7 @@ done:
     free(matched);
     free(uvv);
     free(g);
+    free(gfrac);
     return st;
 }
 
@@ -1765,7 +1927,7 @@ static sq_status replay_chords(ctx *c)
             uint32_t ov = j < N ? W->he_vert[f] : W->he_vert[W->he_next[f]];
             g[2 * j] = O->xy[2 * ov], g[2 * j + 1] = O->xy[2 * ov + 1];
         }
-        st = split_polyline(c, path, npath, N, matched);
+        st = split_polyline(c, path, npath, N, NULL, matched);
         if (st) break;
         if (sec_reserve(c)) {
             st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
@@ -1797,7 +1959,7 @@ static sq_status replay_chords(ctx *c)
             break;
         }
         /* the path's end points keep their UVs: only its inside is new */
-        st = polyline_uv(c, pl, npl, matched, g, N, uvv);
+        st = polyline_uv(c, pl, npl, matched, g, 1.0, N, uvv);
         if (st) break;
         for (uint32_t q = 1; q < npl; q++) {
             c->sec_uv[pl[q]] = uvv[q];                  /* left side  */
@@ -2736,10 +2898,15 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     uint32_t root_he = SQ_NONE;
     st = cut_surface(&c, hmap, &root_he);
     if (st == SQ_OK && sec_reserve(&c)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    if (st == SQ_OK && c.guided) st = guide(&c);
-    if (st == SQ_OK) st = replicate_tree(&c, root_he);
+    if (st == SQ_OK && c.qtri) {
+        st = qtri_surface_tree(&c);
+    } else {
+        if (st == SQ_OK && c.guided) st = guide(&c);
+        if (st == SQ_OK) st = replicate_tree(&c, root_he);
+    }
     if (st) goto done;
-    stats->tree_pair = c.tree_exact;
+    stats->tree_pair = c.tree_exact && !c.qtri;
+    stats->tree_qtri = c.qtri, stats->qtri_verts = c.qt_verts, stats->qtri_steiner = c.qt_steiner;
     double t1 = sq_now();
     progress(&c, "boundary map", 0.45);
     c.o2m = malloc((size_t)c.O->cut.nh * sizeof *c.o2m);
@@ -2751,12 +2918,12 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     st = boundary_map(&c);
     if (st) goto done;
     double t2 = sq_now(), t_round = t2, t3 = t2, t4, t_overlay = 0; /* t_round: the last round's start */
-    if (opt->interior == SQ_INTERIOR_OVERLAY || opt->interior == SQ_INTERIOR_OVERLAY_CHORDS) {
-        /* step 7' instead of 6-7c */
+    if (opt->interior == SQ_INTERIOR_OVERLAY || opt->interior == SQ_INTERIOR_OVERLAY_CHORDS || c.qtri) {
+        /* step 7' instead of 6-7c (Omega of triangles: its faces alone) */
         progress(&c, "disk maps", 0.55);
         stats->overlay = 1;
         /* checks every triangle too */
-        st = overlay_map(&c, valence, opt->interior == SQ_INTERIOR_OVERLAY ? 1 : 2, out, stats);
+        st = overlay_map(&c, valence, c.qtri ? 0 : opt->interior == SQ_INTERIOR_OVERLAY ? 1 : 2, out, stats);
         if (st) goto done;
         t4 = sq_now();
         goto finish;
@@ -2814,8 +2981,9 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     if (st) goto done;
     if (then_overlay) t_overlay = sq_now() - t_ov;
 finish:
-    out->domain = c.D, out->tree = c.T, out->omega = c.O;
-    c.D = NULL, c.T = NULL, c.O = NULL;
+    out->domain = c.D, out->omega = c.O;
+    c.D = NULL, c.O = NULL;
+    if (!c.qtri) out->tree = c.T, c.T = NULL; /* (no quad tree: Omega of triangles) */
     double t5 = sq_now();
     stats->t_tree = t1 - t0;
     stats->t_boundary = t2 - t1;
@@ -2854,6 +3022,8 @@ done:
     free(hmap);
     free(v_uv);
     free(c.face_limit);
+    free(c.qt_from);
+    free(c.qt_to);
     before_cells_free(&saved);
     return st;
 }

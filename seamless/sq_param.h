@@ -133,8 +133,21 @@ enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
  *    it makes mpz/elk pass with the overlay (docs/param.md);
  *  SQ_TREE_PAIR_EXACT: the same, but where the exact copy fails the
  *    attempt fails (SQ_ERR_SOLVER): the genus-1 fallback's choice, whose
- *    overlay has no chance on the surface tree's winding paths. */
-enum { SQ_TREE_SURFACE = 0, SQ_TREE_DOMAIN = 1, SQ_TREE_ALTERNATE = 2, SQ_TREE_PAIR = 3, SQ_TREE_PAIR_EXACT = 4 };
+ *    overlay has no chance on the surface tree's winding paths;
+ *  SQ_TREE_QTRI: seed 9.4 as the seed does it: the surface tree copied
+ *    into Q triangulated, room made by edge splits along the paths only
+ *    (sq_qtri.h), Omega laid out from it (triangles, dyadic positions) and
+ *    the interior map by overlay (the cells need Q's quads). The same plane
+ *    tree on both sides always (a tree does not separate a disk); the
+ *    attempt fails where the surface tree leaves a cone unjoined. */
+enum {
+    SQ_TREE_SURFACE = 0,
+    SQ_TREE_DOMAIN = 1,
+    SQ_TREE_ALTERNATE = 2,
+    SQ_TREE_PAIR = 3,
+    SQ_TREE_PAIR_EXACT = 4,
+    SQ_TREE_QTRI = 5
+};
 
 /* Guidance modes (sq_param_options.guidance):
  *  SQ_GUIDE_AUTO: SQ_GUIDE_ON for genus >= 2, SQ_GUIDE_OFF below (where
@@ -181,6 +194,10 @@ typedef struct sq_param_stats {
     int surface_tree;                       /* 1: the seed 9.4 surface tree   */
     int overlay;                            /* 1: interior map by overlay     */
     int tree_pair;                          /* 1: SQ_TREE_PAIR's exact copy   */
+    int tree_qtri;                          /* 1: SQ_TREE_QTRI: Omega from Q  */
+                                            /* triangulated (triangles)       */
+    uint32_t qtri_verts;                    /* its vertices, with the tree's  */
+    uint32_t qtri_steiner;                  /* Steiner vertices among them    */
     int fallback;                           /* 1: the genus-1 fallback made   */
                                             /* it (SQ_FALLBACK_AUTO)          */
     /* seconds per step (of the last attempt; t_total covers all) */

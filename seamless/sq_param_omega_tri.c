@@ -108,15 +108,17 @@ sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *
 {
     const sq_metapolygon *W = &O->cut;
     const uint8_t *chord = C ? C->he_chord : NULL;
+    const double gs = ldexp(1.0, -O->xy_shift); /* xy in units of 2^-xy_shift */
     uint32_t ncells = C ? C->ncells : W->nf, nb = W->nbnd;
     uint32_t *wid = malloc((size_t)W->nv * sizeof *wid), *opos = malloc((size_t)W->nh * sizeof *opos);
     uint32_t *mid = malloc((size_t)W->nh * sizeof *mid), *cstart = malloc((size_t)ncells * sizeof *cstart);
+    uint32_t *cid_of = malloc(((size_t)ncells + 1) * sizeof *cid_of);
     uint32_t *ring = malloc(((size_t)W->nh + 1) * sizeof *ring);
     uint32_t *pts = malloc(2 * ((size_t)nbl + W->nh + 64) * sizeof *pts);
     double *pt = malloc(2 * ((size_t)nbl + W->nh + 64) * sizeof *pt), *uv = NULL;
     sq_status st = SQ_OK;
     uint32_t nv = na;
-    if (!wid || !opos || !mid || !cstart || !ring || !pts || !pt) {
+    if (!wid || !opos || !mid || !cstart || !cid_of || !ring || !pts || !pt) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -133,8 +135,20 @@ sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *
     for (uint32_t h = 0; h < W->nh; h++)
         if (W->he_face[h] != SQ_NONE && cell_side(W, chord, h) && wid[W->he_vert[h]] == SQ_NONE)
             wid[W->he_vert[h]] = nv++;
-    uint32_t centre0 = nv;
-    nv += ncells;
+    /* a centre per cell, but not for a triangle of Omega (from Q
+     * triangulated) whose sides carry no surface point and need no
+     * midpoint: that triangle is one of B's as it is */
+    for (uint32_t k = 0; k < ncells && st == SQ_OK; k++) {
+        cid_of[k] = SQ_NONE;
+        uint32_t h = cstart[k];
+        int tri = !C && h != SQ_NONE && W->f_valence[W->he_face[h]] == 3, need = !tri;
+        for (int e = 0; tri && e < 3; e++, h = W->he_next[h]) {
+            uint32_t t = W->he_twin[h];
+            if (opos[h] != SQ_NONE && (bstart[opos[h]] + 1) % nbl != bstart[(opos[h] + 1) % nb]) need = 1;
+            if (W->he_face[t] != SQ_NONE && wid[W->he_vert[h]] < nbl && wid[W->he_vert[t]] < nbl) need = 1;
+        }
+        if (need) cid_of[k] = nv++;
+    }
     for (uint32_t h = 0; h < W->nh; h++) {
         uint32_t t = W->he_twin[h];
         if (W->he_face[h] == SQ_NONE || W->he_face[t] == SQ_NONE || t < h || !cell_side(W, chord, h)) continue;
@@ -151,12 +165,12 @@ sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *
             memcpy(uv, buv0, 2 * (size_t)nbl * sizeof *uv);
             for (uint32_t v = 0; v < W->nv; v++)
                 if (wid[v] != SQ_NONE && wid[v] >= na)
-                    uv[2 * (size_t)wid[v]] = (double)O->xy[2 * v], uv[2 * (size_t)wid[v] + 1] = (double)O->xy[2 * v + 1];
+                    uv[2 * (size_t)wid[v]] = (double)O->xy[2 * v] * gs, uv[2 * (size_t)wid[v] + 1] = (double)O->xy[2 * v + 1] * gs;
             for (uint32_t h = 0; h < W->nh; h++)
                 if (mid[h] != SQ_NONE && h < W->he_twin[h]) {
                     uint32_t a = W->he_vert[h], b = W->he_vert[W->he_twin[h]];
-                    uv[2 * (size_t)mid[h]] = 0.5 * (double)(O->xy[2 * a] + O->xy[2 * b]);
-                    uv[2 * (size_t)mid[h] + 1] = 0.5 * (double)(O->xy[2 * a + 1] + O->xy[2 * b + 1]);
+                    uv[2 * (size_t)mid[h]] = 0.5 * (double)(O->xy[2 * a] + O->xy[2 * b]) * gs;
+                    uv[2 * (size_t)mid[h] + 1] = 0.5 * (double)(O->xy[2 * a + 1] + O->xy[2 * b + 1]) * gs;
                 }
             next = layer0;
         }
@@ -186,8 +200,20 @@ sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *
                 int64_t x = O->xy[2 * W->he_vert[ring[q]]], y = O->xy[2 * W->he_vert[ring[q]] + 1];
                 bx0 = x < bx0 ? x : bx0, bx1 = x > bx1 ? x : bx1, by0 = y < by0 ? y : by0, by1 = y > by1 ? y : by1;
             }
-            uint32_t cid = centre0 + k;
-            if (pass == 1) uv[2 * (size_t)cid] = 0.5 * (double)(bx0 + bx1), uv[2 * (size_t)cid + 1] = 0.5 * (double)(by0 + by1);
+            uint32_t cid = cid_of[k];
+            if (cid == SQ_NONE) { /* a triangle of Omega as it is */
+                if (pass == 1 && tri_add(bt, wid[W->he_vert[ring[0]]], wid[W->he_vert[ring[1]]], wid[W->he_vert[ring[2]]]))
+                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                continue;
+            }
+            if (pass == 1 && nr == 3 && !C) { /* a triangle (Omega from Q triangulated): its centroid */
+                double sx = 0, sy = 0;
+                for (uint32_t q = 0; q < 3; q++)
+                    sx += (double)O->xy[2 * W->he_vert[ring[q]]], sy += (double)O->xy[2 * W->he_vert[ring[q]] + 1];
+                uv[2 * (size_t)cid] = sx / 3 * gs, uv[2 * (size_t)cid + 1] = sy / 3 * gs;
+            } else if (pass == 1) {
+                uv[2 * (size_t)cid] = 0.5 * (double)(bx0 + bx1) * gs, uv[2 * (size_t)cid + 1] = 0.5 * (double)(by0 + by1) * gs;
+            }
             for (uint32_t q = 0; q < nr && st == SQ_OK;) {
                 uint32_t e0 = ring[(r0 + q) % nr], np = 0, e = e0, q1 = q;
                 for (;;) {
@@ -218,7 +244,7 @@ sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *
         }
     }
 done:
-    free(wid), free(opos), free(mid), free(cstart), free(ring), free(pts), free(pt);
+    free(wid), free(opos), free(mid), free(cstart), free(cid_of), free(ring), free(pts), free(pt);
     if (st) free(uv), uv = NULL;
     *nv_out = nv, *uv_out = uv;
     return st;

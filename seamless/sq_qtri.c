@@ -13,7 +13,7 @@ void sq_qtri_init(sq_qtri *T)
 {
     memset(T, 0, sizeof *T);
     sq_tsurf_init(&T->S);
-    T->root = T->root_side = T->root_he = SQ_NONE;
+    T->root = T->root_side = T->root_he = T->root_pos = SQ_NONE;
 }
 
 void sq_qtri_free(sq_qtri *T)
@@ -449,7 +449,7 @@ sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, co
             st = sq_error_set(err, SQ_ERR_INTERNAL, "tree copy: no root halfedge on side %u", q_root_side);
             goto done;
         }
-        T->root = T->closed_of[v], T->root_side = q_root_side, T->root_he = e;
+        T->root = T->closed_of[v], T->root_side = q_root_side, T->root_he = e, T->root_pos = (uint32_t)iq;
     }
     R.snode[cone[0]] = T->cone[0];
     T->tree_step[T->cone[0]] = 0;

@@ -35,6 +35,7 @@
 #include "sq_error.h"
 #include "sq_guide.h"
 #include "sq_mesh.h"
+#include "sq_omega.h"
 #include "sq_tsurf.h"
 
 #ifdef __cplusplus
@@ -63,6 +64,7 @@ typedef struct sq_qtri {
     uint32_t root_side;  /* the side of Q it lies inside                   */
     uint32_t root_he;    /* the cut halfedge leaving it along that side,   */
                          /* the side's faces to its left                   */
+    uint32_t root_pos;   /* its index on that side (sq_domain_side_vertices) */
     uint64_t splits;     /* Steiner vertices made by the tree              */
 } sq_qtri;
 
@@ -108,6 +110,19 @@ sq_status sq_qtri_layout(const sq_qtri *T, double *corner_xy, uint8_t *f_rot, sq
  * edge to its twin's copy; 0 if it is not a rotation by a multiple of 90
  * degrees plus a translation, exactly. */
 int sq_qtri_transition(const sq_qtri *T, const double *corner_xy, uint32_t h, uint8_t *rot, double t[2]);
+
+/* Omega from T (after sq_qtri_replicate) as an sq_omega (seed 7): S cut
+ * along Q's boundary and the tree, laid out by sq_qtri_layout, with the
+ * labels of sq_omega (Q's sides, then per tree segment s its left side
+ * k + 2s and its right side k + 2s + 1, walked away from the root, then the
+ * part of the root's side after the root and its partner), their exact
+ * transitions, and xy_shift > 0 where the midpoints need it. The
+ * segments are numbered here: seg_from[s], seg_to[s] (vertices of S, nodes
+ * of the tree, seg_from nearer the root; arrays of *nseg entries,
+ * malloc'd, the caller frees them). O is replaced (it must be
+ * initialized). */
+sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint32_t *nseg, uint32_t **seg_from,
+                        uint32_t **seg_to, sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -169,13 +169,20 @@ want='not j["tree_pair"]' passes_at eight 1
 # --tree pair-exact with --interior overlay-chords (the fallback's choices)
 # on eight: the exact tree, Omega's rectangles first
 want='j["tree_pair"] and j["interior"]=="overlay"' passes_at eight 1 --tree pair-exact --interior overlay-chords
+# --tree qtri: the surface tree copied into Q triangulated (seed 9.4, edge
+# splits where paths need room), Omega of triangles, the overlay's map:
+# genus 2 (eight), genus 3 (genus3), cup (genus 2, 36 cones)
+want='j["tree_qtri"] and not j["tree_pair"] and j["interior"]=="overlay" and j["qtri_verts"] > 0' passes_at eight 1 --tree qtri
+want='j["tree_qtri"] and j["genus"]==3' passes_at genus3 1 --tree qtri
+want='j["tree_qtri"]' passes_at cup 1 --tree qtri
 # the text summary names the tree that was built (pair, or the surface's)
-for t in pair-exact surface; do
+for t in pair-exact surface qtri; do
   "$bin" param "$shared/data/mpz/eight.obj" --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/tree_$t.obj" \
     --tree "$t" --attempts 1 >"$tmp/tree_$t.txt" 2>&1
 done
 if grep -q "^attempt .*one plane cone tree grown on the surface and in Q at once (tree pair)" "$tmp/tree_pair-exact.txt" \
-    && grep -q "^attempt .*cone tree from the surface (seed 9.4)" "$tmp/tree_surface.txt"; then
+    && grep -q "^attempt .*cone tree from the surface (seed 9.4)" "$tmp/tree_surface.txt" \
+    && grep -q "^attempt .*the surface cone tree copied into Q triangulated (tree qtri)" "$tmp/tree_qtri.txt"; then
   ok
 else
   bad "eight: the summary does not name the tree built: $(grep '^attempt' "$tmp"/tree_*.txt)"
@@ -304,6 +311,10 @@ expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" 
 expect "--max-crossings 100" 3 "more than 100 crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
   --interior overlay-chords --max-crossings 100 --attempts 1
 expect "bad --max-crossings" 2 "max-crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-crossings 0
+# tree qtri where the surface tree cannot join a cone (helmet at seed 1: a
+# cone walled in by the cut): the attempt fails cleanly
+expect "--tree qtri" 3 "surface tree cannot join the cone" -- "$shared/data/mpz/helmet.obj" \
+  --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/e/x.obj" --tree qtri --attempts 1
 # where the exact tree cannot be built, pair-exact fails the attempt (no
 # fallback to Q's own tree): helmet at seed 1, a cone walled in by the cut
 expect "--tree pair-exact" 3 "exact plane tree (tree pair-exact) failed" -- "$shared/data/mpz/helmet.obj" \

@@ -25,6 +25,7 @@
 #include "sq_domain.h"
 #include "sq_guide.h"
 #include "sq_metapolygon.h"
+#include "sq_omega.h"
 #include "sq_pattern.h"
 #include "sq_qtri.h"
 
@@ -274,6 +275,20 @@ static void run_model(const char *name, uint64_t seed)
          * a side's two ends are corners, where the label changes) */
         assert_int_equal(changes, 0);
         free(cxy), free(frot);
+        /* Omega as an sq_omega: a disk of T's faces, every label one
+         * transition, the root splitting its side */
+        sq_omega O;
+        sq_omega_init(&O);
+        uint32_t nseg = 0, *sf = NULL, *stt = NULL;
+        if (sq_qtri_omega(&T, &D, &O, &nseg, &sf, &stt, &err))
+            fail_msg("%s seed %llu: %s", name, (unsigned long long)seed, err.msg);
+        assert_int_equal(O.cut.nf, S->nf);
+        assert_int_equal(O.cut.nbnd, ncut);
+        assert_int_equal(O.nlabels, k + 2 * nseg + 2);
+        assert_true(nseg >= n - 1);
+        for (uint32_t s2 = 0; s2 < nseg; s2++) assert_true(sf[s2] != stt[s2]);
+        free(sf), free(stt);
+        sq_omega_free(&O);
         print_message("%s seed %llu: %u cones, %u nodes, tree %u vertices, Q triangulated %u -> %u vertices "
                       "(%llu Steiner), %u cut halfedges, Omega laid out\n",
                       name, (unsigned long long)seed, n, nodes, ntree, nv0, S->nv, (unsigned long long)T.splits, ncut);

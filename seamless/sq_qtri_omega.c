@@ -1,0 +1,260 @@
+/* seamquad: Omega from Q triangulated (sq_qtri.h, sq_qtri_omega; seed 7,
+ * "Compatible Cutting": "the cut quad mesh Q can be laid out isometrically
+ * in the plane, yielding the seamless parameter domain Omega").
+ *
+ * The cut disk: every vertex of S off the cut is one vertex of Omega_c,
+ * every vertex on the cut one per sector (a sector is named by the cut
+ * halfedge on its clockwise side, sq_tsurf.h). Face halfedges keep S's
+ * indices; the boundary halfedge b(h) twin of the cut face halfedge h
+ * follows them. Omega_c's boundary runs clockwise (disk on the right):
+ * after b(h) comes b(twin g), g the first cut halfedge counterclockwise
+ * from h around h's origin. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sq_qtri.h"
+
+/* the first cut halfedge counterclockwise from the cut halfedge h around
+ * its origin (h itself when it is the only one) */
+static uint32_t ccw_cut(const sq_tsurf *S, uint32_t h)
+{
+    uint32_t g = sq_ts_ccw(S, h);
+    while (!S->kind[g]) g = sq_ts_ccw(S, g);
+    return g;
+}
+
+static int is_tree(const sq_tsurf *S, uint32_t h) { return S->kind[h] && S->label[h] == SQ_NONE; }
+
+sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint32_t *nseg_out, uint32_t **seg_from,
+                        uint32_t **seg_to, sq_error *err)
+{
+    const sq_tsurf *S = &T->S;
+    const uint32_t k = D->k, nh = S->nh;
+    sq_omega_free(O);
+    *nseg_out = 0, *seg_from = *seg_to = NULL;
+    uint32_t *bidx = malloc((size_t)nh * sizeof *bidx);  /* cut face halfedge -> b(h) - nh */
+    uint32_t *wv = malloc((size_t)nh * sizeof *wv);      /* corner -> vertex of Omega_c   */
+    uint32_t *vid = malloc((size_t)S->nv * sizeof *vid); /* uncut vertex -> its vertex    */
+    double *cxy = malloc(2 * (size_t)nh * sizeof *cxy);
+    uint8_t *frot = malloc((size_t)S->nf + 1);
+    uint32_t *par = malloc((size_t)S->nv * sizeof *par), *queue = malloc((size_t)S->nv * sizeof *queue);
+    uint32_t *seg_he = malloc((size_t)nh * sizeof *seg_he); /* tree halfedge away from the root -> segment */
+    uint32_t *from = NULL, *to = NULL, nseg = 0;
+    sq_status st = SQ_OK;
+    if (!bidx || !wv || !vid || !cxy || !frot || !par || !queue || !seg_he) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
+        goto done;
+    }
+    st = sq_qtri_layout(T, cxy, frot, err);
+    if (st) goto done;
+    /* vertices */
+    uint32_t nb = 0, nw = 0;
+    for (uint32_t h = 0; h < nh; h++) bidx[h] = S->kind[h] ? nb++ : SQ_NONE;
+    for (uint32_t v = 0; v < S->nv; v++) vid[v] = S->v_ncut[v] ? SQ_NONE : nw++;
+    for (uint32_t h = 0; h < nh; h++)
+        if (S->kind[h]) wv[h] = nw++; /* the sector named by h */
+    for (uint32_t h = 0; h < nh; h++) {
+        uint32_t v = S->vert[h];
+        if (!S->kind[h]) wv[h] = vid[v] != SQ_NONE ? vid[v] : SQ_NONE;
+    }
+    for (uint32_t h = 0; h < nh; h++)
+        if (wv[h] == SQ_NONE) wv[h] = wv[sq_tsurf_sector_of(S, h)];
+    /* the cut disk */
+    sq_metapolygon *W = &O->cut;
+    sq_metapolygon_init(W);
+    st = sq_metapolygon_reserve(W, nw, S->nf, (uint64_t)nh + nb, err);
+    if (st) goto done;
+    W->nv = nw, W->nf = S->nf, W->nh = nh + nb, W->nbnd = nb;
+    for (uint32_t v = 0; v < nw; v++) W->v_nface[v] = 0, W->v_he[v] = SQ_NONE;
+    for (uint32_t f = 0; f < S->nf; f++) W->f_he[f] = S->f_he[f], W->f_valence[f] = 3;
+    for (uint32_t h = 0; h < nh; h++) {
+        W->he_vert[h] = wv[h], W->he_next[h] = S->next[h], W->he_face[h] = S->face[h];
+        W->v_nface[wv[h]]++;
+        if (W->v_he[wv[h]] == SQ_NONE) W->v_he[wv[h]] = h;
+        if (!S->kind[h]) {
+            W->he_twin[h] = S->twin[h];
+            continue;
+        }
+        uint32_t b = nh + bidx[h];
+        W->he_twin[h] = b, W->he_twin[b] = h, W->he_face[b] = SQ_NONE;
+        W->he_vert[b] = wv[S->next[h]];
+        W->he_next[b] = nh + bidx[S->twin[ccw_cut(S, h)]];
+    }
+    /* a boundary vertex's v_he: its outgoing boundary halfedge */
+    for (uint32_t h = 0; h < nh; h++)
+        if (S->kind[h]) W->v_he[wv[h]] = nh + bidx[S->twin[ccw_cut(S, h)]];
+    W->bnd_he = nh + bidx[T->root_he];
+    st = sq_metapolygon_validate(W, 0, err);
+    if (st) goto done;
+    /* tree segments, walked away from the root */
+    for (uint32_t v = 0; v < S->nv; v++) par[v] = SQ_NONE;
+    for (uint32_t h = 0; h < nh; h++) seg_he[h] = SQ_NONE;
+    uint32_t nq = 0;
+    queue[nq++] = T->root, par[T->root] = T->root;
+    from = malloc(((size_t)S->nv + 1) * sizeof *from), to = malloc(((size_t)S->nv + 1) * sizeof *to);
+    if (!from || !to) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
+        goto done;
+    }
+    for (uint32_t i = 0; i < nq; i++) {
+        uint32_t x = queue[i], h0 = S->v_he[x], h = h0, deg = 0;
+        do {
+            if (is_tree(S, h)) deg++;
+            h = sq_ts_ccw(S, h);
+        } while (h != h0);
+        const int node = x == T->root || deg != 2 || S->valence[x] != 4;
+        do {
+            if (is_tree(S, h)) {
+                uint32_t y = sq_ts_head(S, h);
+                if (par[y] == SQ_NONE) {
+                    par[y] = x, queue[nq++] = y;
+                    /* a new segment at a node, else the parent's */
+                    uint32_t s;
+                    if (node) {
+                        s = nseg++;
+                        from[s] = x;
+                    } else {
+                        uint32_t p = par[x], hp = h0;
+                        do {
+                            if (sq_ts_head(S, hp) == p) break;
+                            hp = sq_ts_ccw(S, hp);
+                        } while (hp != h0);
+                        s = seg_he[S->twin[hp]];
+                    }
+                    seg_he[h] = s, to[s] = y;
+                } else if (par[x] != y) {
+                    st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: the tree has a cycle at vertex %u", x);
+                    goto done;
+                }
+            }
+            h = sq_ts_ccw(S, h);
+        } while (h != h0);
+    }
+    /* labels */
+    const uint32_t lr = k + 2 * nseg, nl = lr + 2;
+    O->k = k, O->nlabels = nl;
+    O->he_label = malloc((size_t)W->nh * sizeof *O->he_label);
+    O->he_partner = malloc((size_t)W->nh * sizeof *O->he_partner);
+    O->label_side = malloc((size_t)nl * sizeof *O->label_side);
+    O->label_partner = malloc((size_t)nl * sizeof *O->label_partner);
+    O->label_rot = malloc((size_t)nl);
+    O->label_t = malloc(2 * (size_t)nl * sizeof *O->label_t);
+    O->xy = malloc(2 * (size_t)nw * sizeof *O->xy);
+    O->v_qvert = malloc((size_t)nw * sizeof *O->v_qvert);
+    O->he_qhe = malloc((size_t)W->nh * sizeof *O->he_qhe);
+    uint8_t *lab_seen = calloc(nl, 1);
+    if (!O->he_label || !O->he_partner || !O->label_side || !O->label_partner || !O->label_rot || !O->label_t || !O->xy ||
+        !O->v_qvert || !O->he_qhe || !lab_seen) {
+        free(lab_seen);
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
+        goto done;
+    }
+    for (uint32_t l = 0; l < nl; l++) {
+        O->label_side[l] = l < k ? l : SQ_NONE;
+        O->label_partner[l] = l < k ? D->pattern.partner[l] : l ^ 1u;
+    }
+    if (D->k & 1) { /* k is even for every pattern (8g - 4, 6, 2) */
+        free(lab_seen);
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: odd number of sides");
+        goto done;
+    }
+    for (uint32_t h = 0; h < W->nh; h++) O->he_label[h] = O->he_partner[h] = SQ_NONE;
+    for (uint32_t h = 0; h < nh; h++) {
+        O->he_qhe[h] = h;
+        if (!S->kind[h]) continue;
+        uint32_t b = nh + bidx[h], l;
+        O->he_qhe[b] = S->twin[h];
+        O->he_partner[b] = nh + bidx[S->twin[h]];
+        if (S->label[h] != SQ_NONE) l = S->label[h];
+        else if (seg_he[h] != SQ_NONE) l = k + 2 * seg_he[h];
+        else if (seg_he[S->twin[h]] != SQ_NONE) l = k + 2 * seg_he[S->twin[h]] + 1;
+        else {
+            free(lab_seen);
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: tree edge %u-%u in no segment", S->vert[h],
+                              sq_ts_head(S, h));
+            goto done;
+        }
+        O->he_label[b] = l;
+    }
+    /* the root splits its side: the part after it (clockwise, along the
+     * boundary loop, which leaves the root along the side's edge whose face
+     * halfedge h1 runs into the root) and the partner's part glued to it */
+    {
+        uint32_t h1 = SQ_NONE, x0 = S->v_he[T->root], x = x0;
+        do {
+            uint32_t in = S->twin[x];
+            if (S->kind[in] && S->label[in] == T->root_side && S->next[in] != SQ_NONE && in != T->root_he &&
+                sq_ts_head(S, in) == T->root && S->twin[in] != T->root_he)
+                h1 = in;
+            x = sq_ts_ccw(S, x);
+        } while (x != x0);
+        if (h1 == SQ_NONE || O->he_label[nh + bidx[T->root_he]] != T->root_side) {
+            free(lab_seen);
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: the root has no edges on its side");
+            goto done;
+        }
+        uint32_t n = 0;
+        for (uint32_t b = nh + bidx[h1]; O->he_label[b] == T->root_side && n <= nb; b = W->he_next[b], n++) {
+            O->he_label[b] = lr;
+            O->he_label[O->he_partner[b]] = lr + 1;
+        }
+    }
+    /* transitions: one per label, the same on every edge of it */
+    int shift = 0;
+    for (uint32_t h = 0; h < nh; h++)
+        for (int q = 0; q < 2; q++) {
+            double x = cxy[2 * h + (uint32_t)q];
+            int s = 0;
+            while (s <= 40 && ldexp(x, s) != nearbyint(ldexp(x, s))) s++;
+            if (s > 40) {
+                free(lab_seen);
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: a position is finer than 2^-40");
+                goto done;
+            }
+            shift = s > shift ? s : shift;
+        }
+    O->xy_shift = shift;
+    for (uint32_t h = 0; h < nh; h++) {
+        uint32_t v = wv[h];
+        int64_t x = (int64_t)ldexp(cxy[2 * h], shift), y = (int64_t)ldexp(cxy[2 * h + 1], shift);
+        O->xy[2 * v] = x, O->xy[2 * v + 1] = y;
+        O->v_qvert[v] = S->vert[h];
+    }
+    O->xmin = O->ymin = INT64_MAX, O->xmax = O->ymax = INT64_MIN;
+    for (uint32_t v = 0; v < nw; v++) {
+        int64_t x = O->xy[2 * v], y = O->xy[2 * v + 1];
+        O->xmin = x < O->xmin ? x : O->xmin, O->xmax = x > O->xmax ? x : O->xmax;
+        O->ymin = y < O->ymin ? y : O->ymin, O->ymax = y > O->ymax ? y : O->ymax;
+    }
+    for (uint32_t h = 0; h < nh && st == SQ_OK; h++) {
+        if (!S->kind[h]) continue;
+        uint32_t l = O->he_label[nh + bidx[h]];
+        uint8_t rot;
+        double t[2];
+        if (!sq_qtri_transition(T, cxy, h, &rot, t) || t[0] != nearbyint(t[0]) || t[1] != nearbyint(t[1])) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: edge %u-%u has no integer transition", S->vert[h],
+                              sq_ts_head(S, h));
+            break;
+        }
+        int64_t tx = (int64_t)ldexp(t[0], shift), ty = (int64_t)ldexp(t[1], shift);
+        if (!lab_seen[l]) {
+            lab_seen[l] = 1, O->label_rot[l] = rot, O->label_t[2 * l] = tx, O->label_t[2 * l + 1] = ty;
+        } else if (O->label_rot[l] != rot || O->label_t[2 * l] != tx || O->label_t[2 * l + 1] != ty) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: label %u has two transitions (edge %u-%u)", l,
+                              S->vert[h], sq_ts_head(S, h));
+        }
+    }
+    for (uint32_t l = 0; l < nl && st == SQ_OK; l++)
+        if (!lab_seen[l]) st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: label %u has no edge", l);
+    free(lab_seen);
+    if (st) goto done;
+    O->root_side = T->root_side, O->root_pos = T->root_pos;
+    *nseg_out = nseg, *seg_from = from, *seg_to = to;
+    from = to = NULL;
+done:
+    free(bidx), free(wv), free(vid), free(cxy), free(frot), free(par), free(queue), free(seg_he);
+    free(from), free(to);
+    if (st) sq_omega_free(O);
+    return st;
+}
