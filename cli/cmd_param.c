@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -100,7 +101,9 @@ static void help(FILE *f)
             "                      input vertex + 100000); an attempt that needs more\n"
             "                      gives up (and the next seed is tried)\n"
             "  --max-crossings N   crossings of surface and domain edges the overlay may\n"
-            "                      make (default: the Steiner budget)\n"
+            "                      make (default: the Steiner budget; with --tree qtri\n"
+            "                      400 per input face, at most 4,500,000); each crossing\n"
+            "                      costs about two faces before the simplification\n"
             "  --diagnose OUT.svg  when the map fails its orientation check: the last\n"
             "                      attempt is rebuilt keeping its flips, and the cells of\n"
             "                      Omega holding bad triangles are drawn on the surface and\n"
@@ -196,6 +199,8 @@ typedef struct output {
     const char *path;
     char *stage;  /* staging path */
     int written;  /* staging file complete */
+    int direct;   /* the target is a device or FIFO (/dev/null): written */
+                  /* in place, never renamed over or removed            */
 } output;
 
 static char *staging_path(const char *path, int k)
@@ -612,7 +617,9 @@ int sq_cmd_param(int argc, char **argv)
     double t3 = sq_now();
     for (int i = 0; i < NOUT; i++) {
         if (!out[i].path) continue;
-        out[i].stage = staging_path(out[i].path, i);
+        struct stat sb;
+        out[i].direct = stat(out[i].path, &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISDIR(sb.st_mode);
+        out[i].stage = out[i].direct ? strdup(out[i].path) : staging_path(out[i].path, i);
         if (!out[i].stage) {
             sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
             goto fail;
@@ -636,7 +643,7 @@ int sq_cmd_param(int argc, char **argv)
         out[i].written = 1;
     }
     for (int i = 0; i < NOUT; i++) {
-        if (!out[i].path) continue;
+        if (!out[i].path || out[i].direct) continue;
         if (rename(out[i].stage, out[i].path) != 0) {
             int e = errno;
             sq_error_set(&err, SQ_ERR_IO, "%s: cannot write (rename): %s", out[i].path,
@@ -691,7 +698,7 @@ fail:
     rc = err.code == SQ_ERR_ARGUMENT ? SQ_EXIT_INVALID_INPUT : sq_exit_code(err.code);
 done:
     for (int i = 0; i < NOUT; i++) {
-        if (out[i].stage && out[i].written) unlink(out[i].stage);
+        if (out[i].stage && out[i].written && !out[i].direct) unlink(out[i].stage);
         free(out[i].stage);
     }
     sq_param_free(&P);

@@ -7,7 +7,12 @@
  * the temporary file. Readers of the target thus see either the old file or
  * the complete new one, never a partial write, and a failed run leaves no
  * debris. The new file gets the permissions of the file it replaces, or
- * 0666 minus the umask for a new file (mkstemp alone would give 0600). */
+ * 0666 minus the umask for a new file (mkstemp alone would give 0600).
+ *
+ * A target that exists and is neither a regular file nor a directory (a
+ * device such as /dev/null or /dev/stdout, a FIFO) is written directly:
+ * renaming over it would replace the device by a regular file. Such a
+ * write cannot be atomic; tmp_path stays NULL. */
 #include "sq_io.h"
 
 #include <errno.h>
@@ -68,6 +73,20 @@ sq_status sq_atomic_open(sq_atomic_file *af, const char *path, sq_error *err)
     }
     memcpy(af->path, path, len + 1);
     snprintf(af->tmp_path, tlen, "%.*s.%s%s", (int)dirlen, path, base, suffix);
+    struct stat tb;
+    if (stat(path, &tb) == 0 && !S_ISREG(tb.st_mode) && !S_ISDIR(tb.st_mode)) {
+        free(af->tmp_path);
+        af->tmp_path = NULL;
+        FILE *fp = fopen(path, "wb");
+        if (!fp) {
+            int e = errno;
+            free(af->path);
+            memset(af, 0, sizeof *af);
+            return atomic_fail(err, "open it for writing", path, e);
+        }
+        af->fp = fp;
+        return SQ_OK;
+    }
 
     int fd = mkstemp(af->tmp_path);
     if (fd < 0) {
@@ -95,10 +114,21 @@ sq_status sq_atomic_open(sq_atomic_file *af, const char *path, sq_error *err)
 
 sq_status sq_atomic_commit(sq_atomic_file *af, sq_error *err)
 {
-    if (!af || !af->fp || !af->tmp_path || !af->path)
+    if (!af || !af->fp || !af->path)
         return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_atomic_commit: file not open");
     FILE *fp = af->fp;
     sq_status st = SQ_OK;
+    if (!af->tmp_path) { /* a device or FIFO, written directly */
+        int bad = ferror(fp);
+        if (fflush(fp) != 0 && st == SQ_OK) st = atomic_fail(err, "write", af->path, errno);
+        else if (bad) st = sq_error_set(err, SQ_ERR_IO, "%s: cannot write: a write failed", af->path);
+        af->fp = NULL;
+        if (fclose(fp) != 0 && st == SQ_OK) st = atomic_fail(err, "close", af->path, errno);
+        free(af->path);
+        memset(af, 0, sizeof *af);
+        if (st == SQ_OK) sq_error_clear(err);
+        return st;
+    }
     int had_error = ferror(fp);
     if (fflush(fp) != 0)
         st = atomic_fail(err, "write", af->path, errno);

@@ -51,7 +51,9 @@ sq_status sq_write_ply(const char *path, uint32_t nv, const double *pos,
                        sq_error *err);
 
 /* Atomic output: open a temporary file next to `path`; commit renames it
- * over `path`; abort removes it. */
+ * over `path`; abort removes it. An existing target that is neither a
+ * regular file nor a directory (/dev/null, a FIFO) is written directly
+ * (tmp_path NULL), never replaced. */
 typedef struct sq_atomic_file {
     void *fp;          /* FILE *                                   */
     char *tmp_path;

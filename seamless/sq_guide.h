@@ -45,6 +45,17 @@ enum { SQ_GUIDE_LEFT = 1, SQ_GUIDE_RIGHT = 2 };
 sq_status sq_guide_surface_disk(const sq_mesh *m, const sq_cut_graph *G, double *v_xy,
                                 double *corner_angle, sq_error *err);
 
+/* The same outputs from a layout with little length distortion
+ * (sq_guide_surface_arap.c): from sq_guide_surface_disk's, the boundary
+ * freed and `iters` as-rigid-as-possible iterations (one rotation per
+ * triangle, one sparse solve), then moved and scaled into the unit disk
+ * (centroid at the origin, farthest point at radius 0.999). corner_angle:
+ * each corner's direction from the centroid, in [0, 2 pi), in general no
+ * longer increasing with the corner's index. */
+sq_status sq_guide_surface_arap(const sq_mesh *m, const sq_cut_graph *G, uint32_t iters, double *v_xy,
+                                double *corner_angle, sq_error *err);
+#define SQ_GUIDE_ARAP_ITERS 10
+
 /* Layout of D's quad disk Q in the unit disk: corner i of Q at angle
  * corner_angle[i]; Q's boundary runs clockwise (decreasing angle) from
  * corner i to corner i + 1, its vertices evenly spaced; interior vertices

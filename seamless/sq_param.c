@@ -323,7 +323,10 @@ static sq_status guided_order(ctx *c, int32_t *val, uint32_t nc, uint32_t *nt)
         st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    st = sq_guide_surface_disk(m, &c->G, v_xy, ang, c->err);
+    /* SQ_TREE_QTRI: the layout with little length distortion, so that Q's
+     * cones lie about as far apart as the surface's (docs/param.md) */
+    st = c->opt->tree == SQ_TREE_QTRI ? sq_guide_surface_arap(m, &c->G, SQ_GUIDE_ARAP_ITERS, v_xy, ang, c->err)
+                                      : sq_guide_surface_disk(m, &c->G, v_xy, ang, c->err);
     if (st) goto done;
     c->surf_corner_angle = ang;
     ang = NULL;
@@ -612,6 +615,10 @@ static sq_status qtri_tree(ctx *c)
         st = sq_qtri_replicate(&T, c->D, c->m, &c->G, n, c->step_vertex, qv, c->s_tree_next, sv, &root,
                                q_side_of_surface(c, root.side), c->err);
     if (st == SQ_OK) st = sq_qtri_omega(&T, c->D, c->O, &c->qt_nseg, &qfrom, &qto, c->err);
+    /* a coarse triangulation of Omega serves the overlay as well (seed 10)
+     * with fewer crossings */
+    uint32_t removed = 0;
+    if (st == SQ_OK) st = sq_omega_coarsen(c->O, &removed, c->err);
     /* the segments' ends as surface vertices */
     if (st == SQ_OK) {
         node = malloc((size_t)T.S.nv * sizeof *node);
@@ -2680,7 +2687,10 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     if (st) goto done;
     sq_overlay_mesh Am = {S->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
     progress(c, "overlay", 0.75);
-    st = sq_overlay_build(nbl, na, nv, xy, &Am, &Bm, c->opt->max_crossings ? c->opt->max_crossings : steiner_budget(c),
+    st = sq_overlay_build(nbl, na, nv, xy, &Am, &Bm,
+                          c->opt->max_crossings ? c->opt->max_crossings
+                          : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
+                                                : steiner_budget(c),
                           &X, err);
     if (st) goto done;
     /* the output: S's vertices, then B's interior vertices, then the crossings */

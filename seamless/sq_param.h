@@ -74,7 +74,9 @@ typedef struct sq_param_options {
      * 0: 9 per input vertex + 100000. */
     uint64_t max_steiner;
     /* Crossings of surface and domain edges the overlay (step 7') may make
-     * before it gives up (SQ_ERR_SOLVER); 0: the Steiner budget above. */
+     * before it gives up (SQ_ERR_SOLVER); 0: the Steiner budget above (with
+     * SQ_TREE_QTRI and in the genus-1 fallback: 400 per input face, at
+     * most 4,500,000, at least the Steiner budget). */
     uint64_t max_crossings;
     /* Attempts run at once, each in its own thread (default 1; 0 counts
      * as 1). The result is the same as with 1: the lowest attempt that

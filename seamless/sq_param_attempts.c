@@ -146,6 +146,14 @@ static sq_status run_attempts(const sq_mesh *m, const int32_t *valence, const sq
     return st;
 }
 
+uint64_t sq_param_crossing_budget(const sq_param_options *o, uint32_t nv, uint32_t nf)
+{
+    uint64_t base = sq_param_steiner_budget(o, nv);
+    uint64_t per = SQ_FALLBACK_PER_FACE * (uint64_t)nf;
+    if (per > SQ_FALLBACK_MAX_CROSSINGS) per = SQ_FALLBACK_MAX_CROSSINGS;
+    return per > base ? per : base;
+}
+
 /* The genus-1 fallback (SQ_FALLBACK_AUTO): only where the caller left
  * the choices it overrides at their defaults. */
 static int uses_fallback(const sq_param_options *o, int64_t genus)
@@ -169,12 +177,7 @@ static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq
     f.attempts = n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS;
     /* the Steiner budget of the cuts stays (an attempt whose tree winds
      * fails there, early); the overlay may cross more */
-    if (!f.max_crossings) {
-        uint64_t base = sq_param_steiner_budget(&f, m->nv);
-        uint64_t per = SQ_FALLBACK_PER_FACE * (uint64_t)m->nf;
-        if (per > SQ_FALLBACK_MAX_CROSSINGS) per = SQ_FALLBACK_MAX_CROSSINGS;
-        f.max_crossings = per > base ? per : base;
-    }
+    if (!f.max_crossings) f.max_crossings = sq_param_crossing_budget(&f, m->nv, m->nf);
     if (o->progress) o->progress(o->progress_ctx, "genus-1 fallback: guided domain, exact tree, overlay", 0.0);
     char first[sizeof err->msg];
     memcpy(first, err->msg, sizeof first);

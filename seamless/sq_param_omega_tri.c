@@ -206,11 +206,19 @@ sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *
                     st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                 continue;
             }
-            if (pass == 1 && nr == 3 && !C) { /* a triangle (Omega from Q triangulated): its centroid */
-                double sx = 0, sy = 0;
-                for (uint32_t q = 0; q < 3; q++)
-                    sx += (double)O->xy[2 * W->he_vert[ring[q]]], sy += (double)O->xy[2 * W->he_vert[ring[q]] + 1];
-                uv[2 * (size_t)cid] = sx / 3 * gs, uv[2 * (size_t)cid + 1] = sy / 3 * gs;
+            if (pass == 1 && nr == 3 && !C) {
+                /* a triangle (Omega from Q triangulated): its incentre,
+                 * which projects inside every side (the layers above a
+                 * side need that; the centroid of an obtuse triangle
+                 * does not) */
+                double sx = 0, sy = 0, sw = 0;
+                for (uint32_t q = 0; q < 3; q++) {
+                    uint32_t a = W->he_vert[ring[(q + 1) % 3]], b = W->he_vert[ring[(q + 2) % 3]];
+                    double w = hypot((double)(O->xy[2 * a] - O->xy[2 * b]), (double)(O->xy[2 * a + 1] - O->xy[2 * b + 1]));
+                    sx += w * (double)O->xy[2 * W->he_vert[ring[q]]], sy += w * (double)O->xy[2 * W->he_vert[ring[q]] + 1];
+                    sw += w;
+                }
+                uv[2 * (size_t)cid] = sx / sw * gs, uv[2 * (size_t)cid + 1] = sy / sw * gs;
             } else if (pass == 1) {
                 uv[2 * (size_t)cid] = 0.5 * (double)(bx0 + bx1) * gs, uv[2 * (size_t)cid + 1] = 0.5 * (double)(by0 + by1) * gs;
             }

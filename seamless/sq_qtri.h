@@ -124,6 +124,15 @@ int sq_qtri_transition(const sq_qtri *T, const double *corner_xy, uint32_t h, ui
 sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint32_t *nseg, uint32_t **seg_from,
                         uint32_t **seg_to, sq_error *err);
 
+/* A coarser triangulation of an Omega of triangles (sq_qtri_omega): inner
+ * vertices collapsed into a neighbour (nearest first) wherever the link
+ * condition holds and every remaining triangle stays positively oriented
+ * (exact predicate on the stored positions); the boundary, its labels and
+ * every position kept. Any triangulation of Omega serves the overlay
+ * (seed 10: "any coarse tessellation ... is sufficient"). *removed: the
+ * vertices removed. */
+sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sq_predicates.h"
 #include "sq_qtri.h"
 
 /* the first cut halfedge counterclockwise from the cut halfedge h around
@@ -256,5 +257,270 @@ done:
     free(bidx), free(wv), free(vid), free(cxy), free(frot), free(par), free(queue), free(seg_he);
     free(from), free(to);
     if (st) sq_omega_free(O);
+    return st;
+}
+
+/* ---- a coarser triangulation of Omega ---------------------------------- */
+
+typedef struct vlist {
+    uint32_t n, cap;
+    uint32_t *f;
+} vlist;
+
+static int vlist_add(vlist *L, uint32_t f)
+{
+    if (L->n == L->cap) {
+        uint32_t c = L->cap ? 2 * L->cap : 8;
+        uint32_t *p = realloc(L->f, (size_t)c * sizeof *p);
+        if (!p) return -1;
+        L->f = p, L->cap = c;
+    }
+    L->f[L->n++] = f;
+    return 0;
+}
+
+static int tri_has(const uint32_t *t, uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
+
+/* the slot of (a, b) in an open-addressing table of cap (a power of two)
+ * keys, claimed if empty */
+static size_t edge_slot(uint64_t *key, size_t cap, uint32_t a, uint32_t b)
+{
+    uint64_t k = (uint64_t)a << 32 | b;
+    size_t i = (size_t)((k * 0x9e3779b97f4a7c15ull) >> 17) & (cap - 1);
+    while (key[i] != UINT64_MAX && key[i] != k) i = (i + 1) & (cap - 1);
+    key[i] = k;
+    return i;
+}
+
+/* whether collapsing inner vertex v into its neighbour w keeps a valid
+ * triangulation: the link condition (v and w share exactly the two
+ * vertices opposite their edge) and every triangle of v that stays turns
+ * positively with w in v's place */
+static int collapse_ok(const uint32_t *tri, const uint8_t *alive, const vlist *vf, const double *p, uint32_t v,
+                       uint32_t w)
+{
+    uint32_t shared_faces = 0;
+    for (uint32_t i = 0; i < vf[v].n; i++) {
+        uint32_t f = vf[v].f[i];
+        if (!alive[f]) continue;
+        const uint32_t *t = tri + 3 * f;
+        if (tri_has(t, w)) {
+            shared_faces++;
+            continue;
+        }
+        double q[3][2];
+        for (int k = 0; k < 3; k++) {
+            uint32_t x = t[k] == v ? w : t[k];
+            q[k][0] = p[2 * x], q[k][1] = p[2 * x + 1];
+        }
+        if (sq_orient2d(q[0], q[1], q[2]) <= 0) return 0;
+    }
+    if (shared_faces != 2) return 0;
+    /* common neighbours: only the two opposite vertices */
+    uint32_t common = 0;
+    for (uint32_t i = 0; i < vf[v].n; i++) {
+        uint32_t f = vf[v].f[i];
+        if (!alive[f]) continue;
+        for (int k = 0; k < 3; k++) {
+            uint32_t x = tri[3 * f + (uint32_t)k];
+            if (x == v || x == w) continue;
+            /* x a neighbour of w too? (each counted once per face of v
+             * holding it: twice for a vertex on two of v's faces) */
+            for (uint32_t j = 0; j < vf[w].n; j++) {
+                uint32_t g = vf[w].f[j];
+                if (alive[g] && tri_has(tri + 3 * g, x)) {
+                    common++;
+                    break;
+                }
+            }
+        }
+    }
+    /* each opposite vertex lies on two faces of v: counted twice each */
+    return common == 4;
+}
+
+sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
+{
+    sq_metapolygon *W = &O->cut;
+    const uint32_t nf = W->nf, nv = W->nv, nh = W->nh;
+    *removed = 0;
+    for (uint32_t f = 0; f < nf; f++)
+        if (W->f_valence[f] != 3) return sq_error_set(err, SQ_ERR_ARGUMENT, "coarsen: face %u is no triangle", f);
+    uint32_t *tri = malloc(3 * (size_t)nf * sizeof *tri);
+    uint8_t *alive = malloc((size_t)nf + 1), *bnd = calloc((size_t)nv + 1, 1), *gone = calloc((size_t)nv + 1, 1);
+    vlist *vf = calloc((size_t)nv + 1, sizeof *vf);
+    double *p = malloc(2 * (size_t)nv * sizeof *p);
+    uint32_t *vnew = malloc(((size_t)nv + 1) * sizeof *vnew), *hmap = NULL;
+    sq_metapolygon N;
+    sq_metapolygon_init(&N);
+    sq_status st = SQ_OK;
+    if (!tri || !alive || !bnd || !gone || !vf || !p || !vnew) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+        goto done;
+    }
+    for (uint32_t f = 0; f < nf; f++) {
+        uint32_t h = W->f_he[f];
+        for (int k = 0; k < 3; k++, h = W->he_next[h]) tri[3 * f + (uint32_t)k] = W->he_vert[h];
+        alive[f] = 1;
+        for (int k = 0; k < 3; k++)
+            if (vlist_add(&vf[tri[3 * f + (uint32_t)k]], f)) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+                goto done;
+            }
+    }
+    for (uint32_t h = 0; h < nh; h++)
+        if (W->he_face[h] == SQ_NONE) bnd[W->he_vert[h]] = 1;
+    for (uint32_t v = 0; v < nv; v++) p[2 * v] = (double)O->xy[2 * v], p[2 * v + 1] = (double)O->xy[2 * v + 1];
+    /* greedy passes: each inner vertex into its nearest neighbour that keeps
+     * the triangulation valid */
+    for (int pass = 0; pass < 4; pass++) {
+        uint32_t done_pass = 0;
+        for (uint32_t v = 0; v < nv; v++) {
+            if (bnd[v] || gone[v]) continue;
+            uint32_t cand[64], nc = 0;
+            for (uint32_t i = 0; i < vf[v].n && nc < 60; i++) {
+                uint32_t f = vf[v].f[i];
+                if (!alive[f]) continue;
+                for (int k = 0; k < 3; k++) {
+                    uint32_t x = tri[3 * f + (uint32_t)k], dup = 0;
+                    for (uint32_t q = 0; q < nc; q++) dup |= cand[q] == x;
+                    if (x != v && !dup) cand[nc++] = x;
+                }
+            }
+            /* nearest first */
+            for (uint32_t a = 1; a < nc; a++)
+                for (uint32_t b = a; b > 0; b--) {
+                    double da = hypot(p[2 * cand[b]] - p[2 * v], p[2 * cand[b] + 1] - p[2 * v + 1]);
+                    double db = hypot(p[2 * cand[b - 1]] - p[2 * v], p[2 * cand[b - 1] + 1] - p[2 * v + 1]);
+                    if (da >= db) break;
+                    uint32_t t = cand[b];
+                    cand[b] = cand[b - 1], cand[b - 1] = t;
+                }
+            for (uint32_t q = 0; q < nc; q++) {
+                uint32_t w = cand[q];
+                if (!collapse_ok(tri, alive, vf, p, v, w)) continue;
+                for (uint32_t i = 0; i < vf[v].n; i++) {
+                    uint32_t f = vf[v].f[i];
+                    if (!alive[f]) continue;
+                    uint32_t *t = tri + 3 * f;
+                    if (tri_has(t, w)) {
+                        alive[f] = 0;
+                        continue;
+                    }
+                    for (int k = 0; k < 3; k++)
+                        if (t[k] == v) t[k] = w;
+                    if (vlist_add(&vf[w], f)) {
+                        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+                        goto done;
+                    }
+                }
+                gone[v] = 1, done_pass++;
+                break;
+            }
+        }
+        *removed += done_pass;
+        if (!done_pass) break;
+    }
+    /* rebuild Omega_c: live vertices and faces renumbered, boundary kept */
+    uint32_t mv = 0, mf = 0;
+    for (uint32_t v = 0; v < nv; v++) vnew[v] = gone[v] ? SQ_NONE : mv++;
+    for (uint32_t f = 0; f < nf; f++) mf += alive[f];
+    const uint32_t nbh = W->nbnd, mh = 3 * mf + nbh;
+    st = sq_metapolygon_reserve(&N, mv, mf, mh, err);
+    if (st) goto done;
+    N.nv = mv, N.nf = mf, N.nh = mh, N.nbnd = nbh;
+    /* face halfedges 3f' + k; twins by a hash of (tail, head) */
+    size_t cap = 16;
+    while (cap < 2 * (size_t)mh) cap *= 2;
+    uint64_t *key = malloc(cap * sizeof *key);
+    uint32_t *kval = malloc(cap * sizeof *kval);
+    hmap = malloc((size_t)nh * sizeof *hmap);
+    if (!key || !kval || !hmap) {
+        free(key), free(kval);
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+        goto done;
+    }
+    for (size_t i = 0; i < cap; i++) key[i] = UINT64_MAX;
+#define SLOT(a, b) edge_slot(key, cap, a, b)
+    for (uint32_t v = 0; v < mv; v++) N.v_nface[v] = 0, N.v_he[v] = SQ_NONE;
+    uint32_t ff = 0;
+    for (uint32_t f = 0; f < nf; f++) {
+        if (!alive[f]) continue;
+        for (uint32_t k = 0; k < 3; k++) {
+            uint32_t h = 3 * ff + k, a = vnew[tri[3 * f + k]], b = vnew[tri[3 * f + (k + 1) % 3]];
+            N.he_vert[h] = a, N.he_next[h] = 3 * ff + (k + 1) % 3, N.he_face[h] = ff, N.he_twin[h] = SQ_NONE;
+            N.v_nface[a]++;
+            if (N.v_he[a] == SQ_NONE) N.v_he[a] = h;
+            kval[SLOT(a, b)] = h;
+        }
+        N.f_he[ff] = 3 * ff, N.f_valence[ff] = 3;
+        ff++;
+    }
+    /* boundary halfedges in W's order after the faces */
+    uint32_t bi = 0;
+    for (uint32_t h = 0; h < nh; h++) {
+        hmap[h] = SQ_NONE;
+        if (W->he_face[h] == SQ_NONE) hmap[h] = 3 * mf + bi++;
+    }
+    for (uint32_t h = 0; h < nh && st == SQ_OK; h++) {
+        if (hmap[h] == SQ_NONE) continue;
+        uint32_t b = hmap[h], a0 = vnew[W->he_vert[h]], a1 = vnew[W->he_vert[W->he_next[h]]];
+        N.he_vert[b] = a0, N.he_next[b] = hmap[W->he_next[h]], N.he_face[b] = SQ_NONE;
+        size_t s = SLOT(a1, a0);
+        if (key[s] != ((uint64_t)a1 << 32 | a0) || kval[s] == SQ_NONE) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "coarsen: boundary edge %u-%u lost its face", a0, a1);
+            break;
+        }
+        /* (kval stays valid: the slot was filled by a face halfedge) */
+        N.he_twin[b] = kval[s], N.he_twin[kval[s]] = b;
+        N.v_he[a0] = b;
+    }
+    for (uint32_t h = 0; h < 3 * mf && st == SQ_OK; h++) {
+        if (N.he_twin[h] != SQ_NONE) continue;
+        uint32_t a = N.he_vert[h], b = N.he_vert[N.he_next[h]];
+        size_t s = SLOT(b, a);
+        if (key[s] != ((uint64_t)b << 32 | a)) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "coarsen: edge %u-%u has no twin", a, b);
+            break;
+        }
+        N.he_twin[h] = kval[s];
+    }
+#undef SLOT
+    free(key), free(kval);
+    if (st) goto done;
+    N.bnd_he = hmap[W->bnd_he];
+    st = sq_metapolygon_validate(&N, 0, err);
+    if (st) goto done;
+    /* the rest of O follows the renumbering */
+    {
+        uint32_t *lab = malloc((size_t)mh * sizeof *lab), *par = malloc((size_t)mh * sizeof *par);
+        uint32_t *qhe = malloc((size_t)mh * sizeof *qhe), *qv = malloc(((size_t)mv + 1) * sizeof *qv);
+        int64_t *xy = malloc(2 * ((size_t)mv + 1) * sizeof *xy);
+        if (!lab || !par || !qhe || !qv || !xy) {
+            free(lab), free(par), free(qhe), free(qv), free(xy);
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+            goto done;
+        }
+        for (uint32_t h = 0; h < mh; h++) lab[h] = par[h] = qhe[h] = SQ_NONE;
+        for (uint32_t h = 0; h < nh; h++) {
+            if (hmap[h] == SQ_NONE) continue;
+            lab[hmap[h]] = O->he_label[h];
+            par[hmap[h]] = O->he_partner[h] == SQ_NONE ? SQ_NONE : hmap[O->he_partner[h]];
+            qhe[hmap[h]] = O->he_qhe[h];
+        }
+        for (uint32_t v = 0; v < nv; v++)
+            if (vnew[v] != SQ_NONE)
+                qv[vnew[v]] = O->v_qvert[v], xy[2 * vnew[v]] = O->xy[2 * v], xy[2 * vnew[v] + 1] = O->xy[2 * v + 1];
+        free(O->he_label), free(O->he_partner), free(O->he_qhe), free(O->v_qvert), free(O->xy);
+        O->he_label = lab, O->he_partner = par, O->he_qhe = qhe, O->v_qvert = qv, O->xy = xy;
+        sq_metapolygon_free(W);
+        *W = N;
+        sq_metapolygon_init(&N);
+    }
+done:
+    sq_metapolygon_free(&N);
+    if (vf)
+        for (uint32_t v = 0; v < nv; v++) free(vf[v].f);
+    free(tri), free(alive), free(bnd), free(gone), free(vf), free(p), free(vnew), free(hmap);
     return st;
 }

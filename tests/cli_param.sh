@@ -311,6 +311,17 @@ expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" 
 expect "--max-crossings 100" 3 "more than 100 crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
   --interior overlay-chords --max-crossings 100 --attempts 1
 expect "bad --max-crossings" 2 "max-crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-crossings 0
+# a device as the output (/dev/null) is written in place, never replaced
+# by a regular file (the staging rename once did that)
+if [ -c /dev/null ]; then
+  "$bin" param "$shared/data/mpz/eight.obj" --cones "$shared/data/mpz/eight_Th_hat" -o /dev/null --quiet >/dev/null 2>&1
+  rc=$?
+  if [ $rc -eq 0 ] && [ -c /dev/null ]; then
+    ok; echo "PASS -o /dev/null: written, still a character device"
+  else
+    bad "-o /dev/null: rc=$rc, now $(ls -l /dev/null)"
+  fi
+fi
 # tree qtri where the surface tree cannot join a cone (helmet at seed 1: a
 # cone walled in by the cut): the attempt fails cleanly
 expect "--tree qtri" 3 "surface tree cannot join the cone" -- "$shared/data/mpz/helmet.obj" \

@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 
 #include <cmocka.h>
+#include <sys/stat.h>
 
 #include "io_test_util.h"
 
@@ -269,6 +270,27 @@ static void test_bad_arguments(void **state)
     io_rmdir(dir);
 }
 
+/* a device is written directly, never replaced by a regular file
+ * (`seamquad param ... -o /dev/null` once turned /dev/null into one) */
+static void test_atomic_device(void **state)
+{
+    (void)state;
+    struct stat sb;
+    if (stat("/dev/null", &sb) != 0 || !S_ISCHR(sb.st_mode)) skip();
+    sq_atomic_file af;
+    sq_error e;
+    assert_int_equal(sq_atomic_open(&af, "/dev/null", &e), SQ_OK);
+    assert_null(af.tmp_path);
+    fputs("v 0 0 0\n", (FILE *)af.fp);
+    assert_int_equal(sq_atomic_commit(&af, &e), SQ_OK);
+    assert_int_equal(stat("/dev/null", &sb), 0);
+    assert_true(S_ISCHR(sb.st_mode));
+    assert_int_equal(sq_atomic_open(&af, "/dev/null", &e), SQ_OK);
+    sq_atomic_abort(&af);
+    assert_int_equal(stat("/dev/null", &sb), 0);
+    assert_true(S_ISCHR(sb.st_mode));
+}
+
 static void test_atomic_abort_and_replace(void **state)
 {
     (void)state;
@@ -418,7 +440,7 @@ int main(void)
         cmocka_unit_test(test_obj_text),
         cmocka_unit_test(test_missing_directory),
         cmocka_unit_test(test_bad_arguments),
-        cmocka_unit_test(test_atomic_abort_and_replace),
+        cmocka_unit_test(test_atomic_abort_and_replace), cmocka_unit_test(test_atomic_device),
         cmocka_unit_test(test_atomic_rename_failure),
         cmocka_unit_test(test_write_fails_halfway),
         cmocka_unit_test(test_permissions),

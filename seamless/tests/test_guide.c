@@ -77,6 +77,74 @@ static void test_surface_disk(void **state)
     sq_mesh_free(&m);
 }
 
+/* spread of the edge-length ratios (layout over surface) between the 10th
+ * and 90th percentile, over edges with both ends off the cut */
+static double ratio_spread(const sq_mesh *m, const double *xy)
+{
+    double *r = malloc(m->nh * sizeof *r);
+    uint32_t n = 0;
+    for (uint32_t h = 0; h < m->nh; h++) {
+        uint32_t a = m->he_vert[h], b = m->he_vert[m->he_next[h]];
+        if (a > b || isnan(xy[2 * a]) || isnan(xy[2 * b])) continue;
+        const double *p = m->pos + 3 * a, *q = m->pos + 3 * b;
+        double l3 = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+        if (l3 > 0) r[n++] = hypot(xy[2 * a] - xy[2 * b], xy[2 * a + 1] - xy[2 * b + 1]) / l3;
+    }
+    for (uint32_t i = 1; i < n; i++) /* insertion sort: small meshes */
+        for (uint32_t j = i; j > 0 && r[j] < r[j - 1]; j--) {
+            double t = r[j];
+            r[j] = r[j - 1], r[j - 1] = t;
+        }
+    double s = r[n * 9 / 10] / r[n / 10];
+    free(r);
+    return s;
+}
+
+/* the guidance layout with little length distortion (sq_guide_surface_arap):
+ * inside the unit disk, cones placed, NaN on the cut, corner angles in
+ * [0, 2 pi), and edge lengths far more uniform than the Tutte layout's */
+static void test_surface_arap(void **state)
+{
+    (void)state;
+    static const char *models[] = {"mpz/eight", "mpz/holes3"};
+    for (int mi = 0; mi < 2; mi++) {
+        char path[128];
+        sq_mesh m;
+        snprintf(path, sizeof path, "%s.obj", models[mi]);
+        sq_test_load_mesh(&m, path);
+        snprintf(path, sizeof path, "%s_Th_hat", models[mi]);
+        int32_t *val = sq_test_load_valence(path, m.nv);
+        uint8_t *cone = calloc(m.nv, 1);
+        for (uint32_t v = 0; v < m.nv; v++) cone[v] = val[v] != 4;
+        sq_cut_graph G;
+        sq_cut_graph_init(&G);
+        sq_cut_options opt;
+        sq_cut_options_default(&opt);
+        sq_error err = {0};
+        assert_int_equal(sq_cut_graph_build(&m, cone, &opt, &G, NULL, &err), SQ_OK);
+        const uint32_t k = G.pattern.k;
+        double *xy = malloc(2 * (size_t)m.nv * sizeof *xy), *ang = malloc(k * sizeof *ang);
+        double *tx = malloc(2 * (size_t)m.nv * sizeof *tx);
+        assert_int_equal(sq_guide_surface_disk(&m, &G, tx, ang, &err), SQ_OK);
+        assert_int_equal(sq_guide_surface_arap(&m, &G, SQ_GUIDE_ARAP_ITERS, xy, ang, &err), SQ_OK);
+        for (uint32_t i = 0; i < k; i++) assert_true(ang[i] >= 0 && ang[i] < 2 * PI);
+        for (uint32_t v = 0; v < m.nv; v++) {
+            assert_true(isnan(xy[2 * v]) == isnan(tx[2 * v]));
+            if (isnan(xy[2 * v])) continue;
+            assert_true(hypot(xy[2 * v], xy[2 * v + 1]) < 1);
+        }
+        for (uint32_t v = 0; v < m.nv; v++)
+            if (cone[v]) assert_false(isnan(xy[2 * v]));
+        double st = ratio_spread(&m, tx), sa = ratio_spread(&m, xy);
+        print_message("%s: edge-length ratio spread (90th / 10th percentile): Tutte %.2f, ARAP %.2f\n", models[mi], st, sa);
+        assert_true(sa < st);
+        assert_true(sa < 3);
+        free(xy), free(tx), free(ang), free(cone), free(val);
+        sq_cut_graph_free(&G);
+        sq_mesh_free(&m);
+    }
+}
+
 /* Q of random genus-2 and genus-3 cone sets, corners at given angles:
  * corners exactly there, the boundary on the circle, every quad
  * counterclockwise (Tutte of a convex boundary) */
@@ -523,7 +591,7 @@ static void test_cone_tree_guided(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_surface_disk),       cmocka_unit_test(test_domain_disk),
+        cmocka_unit_test(test_surface_disk), cmocka_unit_test(test_surface_arap),       cmocka_unit_test(test_domain_disk),
         cmocka_unit_test(test_match),              cmocka_unit_test(test_cone_order),
         cmocka_unit_test(test_layout_single_face), cmocka_unit_test(test_algorithm1_domains),
         cmocka_unit_test(test_surface_tree),       cmocka_unit_test(test_cone_tree_guided),

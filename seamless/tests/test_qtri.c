@@ -27,6 +27,7 @@
 #include "sq_metapolygon.h"
 #include "sq_omega.h"
 #include "sq_pattern.h"
+#include "sq_predicates.h"
 #include "sq_qtri.h"
 
 /* The cone of Q standing for each step: the irregular vertex inside the
@@ -288,6 +289,28 @@ static void run_model(const char *name, uint64_t seed)
         assert_true(nseg >= n - 1);
         for (uint32_t s2 = 0; s2 < nseg; s2++) assert_true(sf[s2] != stt[s2]);
         free(sf), free(stt);
+        /* coarser: fewer inner vertices, the same boundary and labels,
+         * every triangle positive (exact) */
+        const uint32_t nb0 = O.cut.nbnd, nf0 = O.cut.nf;
+        uint32_t *lab0 = malloc(nb0 * sizeof *lab0);
+        for (uint32_t i = 0, b = O.cut.bnd_he; i < nb0; i++, b = O.cut.he_next[b]) lab0[i] = O.he_label[b];
+        uint32_t removed = 0;
+        assert_int_equal(sq_omega_coarsen(&O, &removed, &err), SQ_OK);
+        assert_int_equal(sq_metapolygon_validate(&O.cut, 0, &err), SQ_OK);
+        assert_int_equal(O.cut.nbnd, nb0);
+        assert_true(O.cut.nf < nf0 && removed > 0);
+        for (uint32_t i = 0, b = O.cut.bnd_he; i < nb0; i++, b = O.cut.he_next[b]) {
+            assert_int_equal(O.he_label[b], lab0[i]);
+            assert_int_equal(O.he_partner[O.he_partner[b]], b);
+        }
+        for (uint32_t f = 0; f < O.cut.nf; f++) {
+            uint32_t h = O.cut.f_he[f];
+            double q[3][2];
+            for (int i = 0; i < 3; i++, h = O.cut.he_next[h])
+                q[i][0] = (double)O.xy[2 * O.cut.he_vert[h]], q[i][1] = (double)O.xy[2 * O.cut.he_vert[h] + 1];
+            assert_true(sq_orient2d(q[0], q[1], q[2]) > 0);
+        }
+        free(lab0);
         sq_omega_free(&O);
         print_message("%s seed %llu: %u cones, %u nodes, tree %u vertices, Q triangulated %u -> %u vertices "
                       "(%llu Steiner), %u cut halfedges, Omega laid out\n",
