@@ -54,7 +54,7 @@ sq_status sq_guide_surface_disk(const sq_mesh *m, const sq_cut_graph *G, double 
  * longer increasing with the corner's index. */
 sq_status sq_guide_surface_arap(const sq_mesh *m, const sq_cut_graph *G, uint32_t iters, double *v_xy,
                                 double *corner_angle, sq_error *err);
-#define SQ_GUIDE_ARAP_ITERS 10
+#define SQ_GUIDE_ARAP_ITERS 30
 
 /* Layout of D's quad disk Q in the unit disk: corner i of Q at angle
  * corner_angle[i]; Q's boundary runs clockwise (decreasing angle) from

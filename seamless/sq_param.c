@@ -2689,7 +2689,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     progress(c, "overlay", 0.75);
     st = sq_overlay_build(nbl, na, nv, xy, &Am, &Bm,
                           c->opt->max_crossings ? c->opt->max_crossings
-                          : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
+                          : c->qtri ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf, SQ_QTRI_MAX_CROSSINGS)
                                                 : steiner_budget(c),
                           &X, err);
     if (st) goto done;

@@ -75,8 +75,8 @@ typedef struct sq_param_options {
     uint64_t max_steiner;
     /* Crossings of surface and domain edges the overlay (step 7') may make
      * before it gives up (SQ_ERR_SOLVER); 0: the Steiner budget above (with
-     * SQ_TREE_QTRI and in the genus-1 fallback: 400 per input face, at
-     * most 4,500,000, at least the Steiner budget). */
+     * SQ_TREE_QTRI: 400 per input face, at most 10,000,000; in the genus-1
+     * fallback at most 4,500,000; at least the Steiner budget). */
     uint64_t max_crossings;
     /* Attempts run at once, each in its own thread (default 1; 0 counts
      * as 1). The result is the same as with 1: the lowest attempt that
@@ -102,7 +102,10 @@ typedef struct sq_param_options {
      * budget and a crossing budget of 400 per input face (at most
      * 4,500,000; max_crossings, when given, instead): slow (tens of
      * seconds) but it passes mpz/elk, which nothing else does
-     * (docs/param.md). SQ_FALLBACK_OFF: none. */
+     * (docs/param.md). For genus >= 2 likewise: up to 4 more attempts
+     * with SQ_TREE_QTRI and a crossing budget of 400 per input face (at
+     * most 10,000,000): it passes cid/elephant (a minute or two, up to
+     * about 3 GB). SQ_FALLBACK_OFF: none. */
     int fallback;
 } sq_param_options;
 
@@ -116,6 +119,7 @@ enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
 #define SQ_FALLBACK_ATTEMPTS 4
 #define SQ_FALLBACK_PER_FACE 400u
 #define SQ_FALLBACK_MAX_CROSSINGS 4500000u
+#define SQ_QTRI_MAX_CROSSINGS 10000000u
 
 #define SQ_PARAM_REFINE 8
 
@@ -200,7 +204,9 @@ typedef struct sq_param_stats {
                                             /* triangulated (triangles)       */
     uint32_t qtri_verts;                    /* its vertices, with the tree's  */
     uint32_t qtri_steiner;                  /* Steiner vertices among them    */
-    int fallback;                           /* 1: the genus-1 fallback made   */
+    int fallback;                           /* 1: a fallback made (genus 1:   */
+                                            /* exact tree; genus >= 2: tree   */
+                                            /* qtri, tree_qtri set)           */
                                             /* it (SQ_FALLBACK_AUTO)          */
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;

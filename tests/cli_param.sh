@@ -199,6 +199,20 @@ else
   echo "SKIP mpz/elk --fallback auto (sanitizer build)"
 fi
 
+# --- the genus>=2 fallback (default --fallback auto): where the default
+# attempts fail (here forced by a Steiner budget of 50, which the cells
+# cannot keep), the surface tree copied into Q triangulated and the overlay
+# (cid/elephant passes so with the defaults: docs/param.md, too slow here);
+# the summary says which fallback made the map
+want='j["fallback"] and j["tree_qtri"] and j["attempts"]==2 and j["interior"]=="overlay"' passes_at eight 1 --max-steiner 50
+"$bin" param "$shared/data/mpz/eight.obj" --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/fb2.obj" --attempts 1 \
+  --max-steiner 50 >"$tmp/fb2.txt" 2>&1
+if grep -q "^fallback *genus >= 2: the default choices failed; the surface tree copied into Q triangulated" "$tmp/fb2.txt"; then
+  ok
+else
+  bad "eight --max-steiner 50: the summary does not name the genus>=2 fallback: $(grep -i fallback "$tmp/fb2.txt")"
+fi
+
 # --- genus 1 with --guide on: Algorithm 1 for the meta-6-gon, the
 # meta-2-gon's cones near the circle (seed 9.2 per piece): mpz/knot1
 # passes with the surface tree, in fewer faces than unguided ------------------
@@ -237,11 +251,11 @@ else
 fi
 
 # --- --diagnose: mpz/holes3 seed 8 fails by a few dozen triangles (without
-# refinement rounds); the failing cells are drawn and reported, the map is
-# still not written -------------------------------------------------------------
+# refinement rounds, and without the genus>=2 fallback, which would pass);
+# the failing cells are drawn and reported, the map is still not written -------------------------------------------------------------
 h3=$shared/data/mpz/holes3.obj
 "$bin" param "$h3" --cones "$shared/data/mpz/holes3_Th_hat" -o "$tmp/diag.obj" --seed 8 --attempts 1 --refine 0 \
-  --diagnose "$tmp/diag.svg" --json --quiet >"$tmp/diag.json" 2>"$tmp/diag.err"
+  --fallback off --diagnose "$tmp/diag.svg" --json --quiet >"$tmp/diag.json" 2>"$tmp/diag.err"
 if [ $? -eq 3 ] && [ ! -e "$tmp/diag.obj" ] && grep -q "<svg" "$tmp/diag.svg" && grep -q "</svg>" "$tmp/diag.svg" \
     && grep -q "diagnosis (seed 8)" "$tmp/diag.err" \
     && python3 -c '
@@ -303,6 +317,10 @@ expect "bad --attempts" 2 "attempts" -- "$knot" --cones "$knot_cones" -o "$tmp/e
 expect "bad --refine" 2 "refine" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --refine 65
 expect "bad --max-steiner" 2 "max-steiner" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-steiner 0
 # a Steiner budget the cut cannot keep: a clean failure that names it
+# genus 2 with --fallback off: the default attempt's failure alone (with
+# the fallback, eight passes so: above)
+expect "--fallback off (genus 2)" 3 "Steiner vertices" -- "$shared/data/mpz/eight.obj" \
+  --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/e/x.obj" --attempts 1 --max-steiner 50 --fallback off
 expect "--max-steiner 10" 3 "more than 10 Steiner vertices" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
   --max-steiner 10 --attempts 1 --fallback off
 expect "bad --guide" 2 "guide" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --guide sometimes
