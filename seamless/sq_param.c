@@ -1489,11 +1489,7 @@ static sq_status qtri_surface_tree(ctx *c)
         if (st) break;
         list[cnt++] = a;
         for (uint32_t i = cnt - 1; i > 0 && st == SQ_OK; i--) {
-            uint32_t x = list[i], y = list[i - 1], h0 = S->v_he[x], h = h0, found = SQ_NONE;
-            do {
-                if (sq_ts_head(S, h) == y) found = h;
-                h = sq_ts_ccw(S, h);
-            } while (h != h0 && found == SQ_NONE);
+            uint32_t x = list[i], y = list[i - 1], found = sq_ts_find(S, x, y);
             if (found == SQ_NONE || S->kind[found]) {
                 st = sq_error_set(c->err, SQ_ERR_INTERNAL, "tree qtri: surface edge %u-%u of segment %u is %s", x,
                                   y, s, found == SQ_NONE ? "missing" : "cut already");

@@ -65,16 +65,6 @@ static uint32_t s_he_in_quad(const sq_tsurf *S, uint32_t f, uint32_t a, uint32_t
     return SQ_NONE;
 }
 
-/* The halfedge of S from a to b, SQ_NONE if they are not adjacent. */
-static uint32_t s_he(const sq_tsurf *S, uint32_t a, uint32_t b)
-{
-    uint32_t h0 = S->v_he[a], h = h0;
-    do {
-        if (sq_ts_head(S, h) == b) return h;
-        h = sq_ts_ccw(S, h);
-    } while (h != h0);
-    return SQ_NONE;
-}
 
 /* the two triangles of a quad along diagonal c0-c2 (0) or c1-c3 (1) */
 static const int quad_tri[2][2][3] = {{{0, 1, 2}, {0, 2, 3}}, {{1, 2, 3}, {1, 3, 0}}};
@@ -306,7 +296,7 @@ static sq_status new_node(rep *R, uint32_t x, uint32_t p, const uint32_t *cone, 
         L++;
     }
     if (L == 1) {
-        uint32_t h = s_he(&T->S, a, b);
+        uint32_t h = sq_ts_find(&T->S, a, b);
         uint32_t mv = h == SQ_NONE ? SQ_NONE : sq_tsurf_split_edge(&T->S, h, 0.5);
         if (mv == SQ_NONE || ensure_cap(T)) return sq_error_set(R->err, SQ_ERR_NOMEM, "out of memory (tree copy)");
         T->tree_next[a] = mv, T->tree_next[mv] = b, T->tree_step[mv] = p;
@@ -485,7 +475,7 @@ sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, co
             }
         } else {
             uint32_t wc = copy_neighbour(&R, x, w);
-            uint32_t start = wc == SQ_NONE ? SQ_NONE : s_he(S, xc, wc);
+            uint32_t start = wc == SQ_NONE ? SQ_NONE : sq_ts_find(S, xc, wc);
             if (start == SQ_NONE || !S->kind[start]) {
                 st = sq_error_set(err, SQ_ERR_INTERNAL, "tree copy: step %u: no copy of the sector's tree edge", j);
                 break;

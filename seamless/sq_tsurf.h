@@ -71,6 +71,16 @@ static inline double sq_ts_dist(const sq_tsurf *S, uint32_t a, uint32_t b)
 /* next outgoing halfedge of the same origin, counterclockwise / clockwise */
 static inline uint32_t sq_ts_ccw(const sq_tsurf *S, uint32_t h) { return S->twin[sq_ts_prev(S, h)]; }
 static inline uint32_t sq_ts_cw(const sq_tsurf *S, uint32_t h) { return S->next[S->twin[h]]; }
+/* the halfedge from a to b, SQ_NONE if they are not adjacent */
+static inline uint32_t sq_ts_find(const sq_tsurf *S, uint32_t a, uint32_t b)
+{
+    uint32_t h0 = S->v_he[a], h = h0;
+    do {
+        if (S->vert[S->next[h]] == b) return h;
+        h = sq_ts_ccw(S, h);
+    } while (h != h0);
+    return SQ_NONE;
+}
 
 void sq_tsurf_init(sq_tsurf *S);
 void sq_tsurf_free(sq_tsurf *S);

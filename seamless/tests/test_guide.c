@@ -32,20 +32,32 @@ static double urand(void) { return (double)(rng() >> 11) / 9007199254740992.0; }
 
 /* the cut surface of mpz/eight: boundary corners in order on the circle,
  * every vertex off the cut strictly inside, vertices on the cut NaN */
+/* a model with its cones and its cut graph (default options, seed 1) */
+static void load_cut(const char *name, sq_mesh *m, int32_t **val, uint8_t **cone, sq_cut_graph *G)
+{
+    char path[128];
+    snprintf(path, sizeof path, "%s.obj", name);
+    sq_test_load_mesh(m, path);
+    snprintf(path, sizeof path, "%s_Th_hat", name);
+    *val = sq_test_load_valence(path, m->nv);
+    *cone = calloc(m->nv, 1);
+    for (uint32_t v = 0; v < m->nv; v++) (*cone)[v] = (*val)[v] != 4;
+    sq_cut_graph_init(G);
+    sq_cut_options opt;
+    sq_cut_options_default(&opt);
+    sq_error err = {0};
+    assert_int_equal(sq_cut_graph_build(m, *cone, &opt, G, NULL, &err), SQ_OK);
+}
+
 static void test_surface_disk(void **state)
 {
     (void)state;
     sq_mesh m;
-    sq_test_load_mesh(&m, "mpz/eight.obj");
-    int32_t *val = sq_test_load_valence("mpz/eight_Th_hat", m.nv);
-    uint8_t *cone = calloc(m.nv, 1);
-    for (uint32_t v = 0; v < m.nv; v++) cone[v] = val[v] != 4;
+    int32_t *val;
+    uint8_t *cone;
     sq_cut_graph G;
-    sq_cut_graph_init(&G);
-    sq_cut_options opt;
-    sq_cut_options_default(&opt);
+    load_cut("mpz/eight", &m, &val, &cone, &G);
     sq_error err = {0};
-    assert_int_equal(sq_cut_graph_build(&m, cone, &opt, &G, NULL, &err), SQ_OK);
     const uint32_t k = G.pattern.k;
     double *xy = malloc(2 * (size_t)m.nv * sizeof *xy), *ang = malloc(k * sizeof *ang);
     assert_int_equal(sq_guide_surface_disk(&m, &G, xy, ang, &err), SQ_OK);
@@ -108,20 +120,12 @@ static void test_surface_arap(void **state)
     (void)state;
     static const char *models[] = {"mpz/eight", "mpz/holes3"};
     for (int mi = 0; mi < 2; mi++) {
-        char path[128];
         sq_mesh m;
-        snprintf(path, sizeof path, "%s.obj", models[mi]);
-        sq_test_load_mesh(&m, path);
-        snprintf(path, sizeof path, "%s_Th_hat", models[mi]);
-        int32_t *val = sq_test_load_valence(path, m.nv);
-        uint8_t *cone = calloc(m.nv, 1);
-        for (uint32_t v = 0; v < m.nv; v++) cone[v] = val[v] != 4;
+        int32_t *val;
+        uint8_t *cone;
         sq_cut_graph G;
-        sq_cut_graph_init(&G);
-        sq_cut_options opt;
-        sq_cut_options_default(&opt);
+        load_cut(models[mi], &m, &val, &cone, &G);
         sq_error err = {0};
-        assert_int_equal(sq_cut_graph_build(&m, cone, &opt, &G, NULL, &err), SQ_OK);
         const uint32_t k = G.pattern.k;
         double *xy = malloc(2 * (size_t)m.nv * sizeof *xy), *ang = malloc(k * sizeof *ang);
         double *tx = malloc(2 * (size_t)m.nv * sizeof *tx);

@@ -167,15 +167,6 @@ static void check_since(const sq_tsurf *S, const snap *s, int mid)
     free(seen);
 }
 
-static uint32_t find_he(const sq_tsurf *S, uint32_t u, uint32_t v)
-{
-    uint32_t h0 = S->v_he[u], h = h0;
-    do {
-        if (sq_ts_head(S, h) == v) return h;
-        h = sq_ts_ccw(S, h);
-    } while (h != h0);
-    return SQ_NONE;
-}
 
 /* Regions: faces connected across uncut edges. Returns their number. */
 static uint32_t regions(const sq_tsurf *S, uint32_t *reg)
@@ -241,7 +232,7 @@ static uint32_t my_path(const sq_tsurf *S, uint32_t a, uint32_t b, const uint8_t
 static void cut_vertex_path(sq_tsurf *S, const uint32_t *p, uint32_t n, uint8_t kind)
 {
     for (uint32_t i = 0; i + 1 < n; i++) {
-        uint32_t h = find_he(S, p[i], p[i + 1]);
+        uint32_t h = sq_ts_find(S, p[i], p[i + 1]);
         assert_int_not_equal(h, SQ_NONE);
         sq_tsurf_cut_edge(S, h, kind, 7, 8);
     }
@@ -332,7 +323,7 @@ static void split_run(const char *rel, uint32_t nsplit)
         assert_int_equal(sq_ts_head(&S, h), mv);
         assert_int_equal(S.vert[g], b);
         assert_int_equal(sq_ts_head(&S, g), mv);
-        uint32_t h2 = find_he(&S, mv, b), g2 = S.twin[h];
+        uint32_t h2 = sq_ts_find(&S, mv, b), g2 = S.twin[h];
         assert_int_equal(S.twin[h2], g);
         assert_int_equal(sq_ts_head(&S, g2), a);
         assert_int_equal(S.kind[h2], kh);
@@ -344,9 +335,9 @@ static void split_run(const char *rel, uint32_t nsplit)
         assert_int_equal(S.v_ncut[b], ncut_b);
         assert_int_equal(S.valence[mv], 4);
         /* the new vertex sees a, b, c, d and nothing else */
-        assert_int_not_equal(find_he(&S, mv, c), SQ_NONE);
-        assert_int_not_equal(find_he(&S, mv, d), SQ_NONE);
-        assert_int_equal(find_he(&S, a, b), SQ_NONE);
+        assert_int_not_equal(sq_ts_find(&S, mv, c), SQ_NONE);
+        assert_int_not_equal(sq_ts_find(&S, mv, d), SQ_NONE);
+        assert_int_equal(sq_ts_find(&S, a, b), SQ_NONE);
         uint32_t deg = 0, x = S.v_he[mv];
         do deg++, x = sq_ts_ccw(&S, x);
         while (x != S.v_he[mv]);
@@ -658,7 +649,7 @@ static sq_status route_checked(sq_tsurf *S, uint32_t start, sq_route_target kind
     sq_status st = sq_tsurf_route(S, start, kind, tval, cone_free, tlen, tsec, path, npath, err);
     if (st != SQ_OK) {
         if (getenv("TSURF_DEBUG") && tgt != SQ_NONE) {
-            uint32_t e = find_he(S, src, tgt);
+            uint32_t e = sq_ts_find(S, src, tgt);
             fprintf(stderr, "src %u tgt %u adjacent %d cut %d; nv %u (was %u)\n", src, tgt, e != SQ_NONE, e != SQ_NONE && S->kind[e], S->nv, s.nv);
             for (uint32_t v = s.nv; v < S->nv; v++) {
                 uint32_t g0 = S->v_he[v], g = g0;
@@ -765,7 +756,7 @@ static void route_sector_run(const char *rel, uint32_t rounds)
         if (st != SQ_OK) {
             /* known gap (docs/param.md): two ends joined by a cut edge,
              * whose only route would run through the face on that edge */
-            uint32_t e = find_he(&S, v1, v2);
+            uint32_t e = sq_ts_find(&S, v1, v2);
             if (e != SQ_NONE && S.kind[e]) {
                 gap++;
                 continue;
