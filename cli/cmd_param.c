@@ -142,15 +142,13 @@ static void help(FILE *f)
             "                      wherever every check still holds and no triangle gets\n"
             "                      more distorted (nothing moves; outputs shrink 2 to 13\n"
             "                      times; docs/param.md, step 9); off: the map as built\n"
-            "  --fallback auto|off auto (default): for genus 1, when every attempt fails\n"
-            "                      with the default choices, up to 4 more from the same\n"
-            "                      seed with --guide on --tree pair-exact --interior\n"
-            "                      overlay-chords and a budget of 400 crossings per\n"
-            "                      input face (at most 4,500,000): tens of seconds, up\n"
-            "                      to about 1.2 GB, but it passes mpz/elk; for genus >= 2\n"
-            "                      up to 4 more with --tree qtri (at most 10,000,000\n"
-            "                      crossings): a minute or two and about 3 GB on\n"
-            "                      cid/elephant, which passes so; off: none\n"
+            "  --fallback auto|off auto (default): for genus >= 1, when every attempt\n"
+            "                      fails with the default choices, up to 4 more from the\n"
+            "                      same seed with --tree qtri (genus 1: --guide on) and a\n"
+            "                      budget of 400 crossings per input face (at most\n"
+            "                      10,000,000): tens of seconds to minutes and up to\n"
+            "                      about 3 GB, but mpz/elk and cid/elephant pass so;\n"
+            "                      off: none\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -346,10 +344,8 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
     if (s->rounds)
         printf("refinement     %u rounds: %u cells with bad triangles halved (step 7c)\n", s->rounds,
                s->cells_refined);
-    if (s->fallback && s->tree_qtri)
-        printf("fallback       genus >= 2: the default choices failed; the surface tree copied into Q triangulated, overlay\n");
-    else if (s->fallback)
-        printf("fallback       genus 1: the default choices failed; guided domain, exact tree, overlay\n");
+    if (s->fallback)
+        printf("fallback       the default choices failed; the surface tree copied into Q triangulated, overlay\n");
     if (s->faces_unsimplified)
         printf("simplified     %u added vertices removed: %u faces -> %u\n", s->simplified,
                s->faces_unsimplified, s->faces_out);

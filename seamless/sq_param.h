@@ -94,18 +94,15 @@ typedef struct sq_param_options {
      * (sq_param_simplify: added vertices off the seams removed where every
      * check still holds); SQ_SIMPLIFY_OFF: the map as built. */
     int simplify;
-    /* SQ_FALLBACK_AUTO (default): for genus 1 with the other choices at
-     * their defaults, when every attempt fails on the map (SQ_ERR_SOLVER),
-     * up to 4 more attempts (from the same seed, one at a time) with the
-     * guided domain, the exact plane tree and the overlay (SQ_GUIDE_ON,
-     * SQ_TREE_PAIR_EXACT, SQ_INTERIOR_OVERLAY_CHORDS), the same Steiner
-     * budget and a crossing budget of 400 per input face (at most
-     * 4,500,000; max_crossings, when given, instead): slow (tens of
-     * seconds) but it passes mpz/elk, which nothing else does
-     * (docs/param.md). For genus >= 2 likewise: up to 4 more attempts
-     * with SQ_TREE_QTRI and a crossing budget of 400 per input face (at
-     * most 10,000,000): it passes cid/elephant (a minute or two, up to
-     * about 3 GB). SQ_FALLBACK_OFF: none. */
+    /* SQ_FALLBACK_AUTO (default): for genus >= 1 with the other choices
+     * at their defaults, when every attempt fails on the map
+     * (SQ_ERR_SOLVER), up to 4 more attempts (from the same seed, one at a
+     * time) with SQ_TREE_QTRI (genus 1: with SQ_GUIDE_ON), the same
+     * Steiner budget and a crossing budget of 400 per input face (at most
+     * 10,000,000; max_crossings, when given, instead): slow (tens of
+     * seconds to minutes, up to about 3 GB) but it passes mpz/elk and
+     * cid/elephant, which nothing else does (docs/param.md).
+     * SQ_FALLBACK_OFF: none. */
     int fallback;
 } sq_param_options;
 

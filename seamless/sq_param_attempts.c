@@ -162,32 +162,26 @@ static int uses_fallback(const sq_param_options *o, int64_t genus)
            o->tree == SQ_TREE_SURFACE && o->interior == SQ_INTERIOR_AUTO && !o->allow_flips;
 }
 
-/* After the n attempts with the default choices failed (err says why).
- * Genus 1: the guided domain (seed 9.2 per piece), the exact plane tree
- * and the overlay, whose map the torus's cells could not give (mpz/elk:
- * the unguided tree and the guided surface tree both make the surface
- * wind around Q's tree; docs/param.md). Genus >= 2: the surface tree
- * copied into Q triangulated and the overlay (SQ_TREE_QTRI; cid/elephant,
- * whose surface tree Q's quad grid cannot follow). One attempt at a time:
- * each may hold gigabytes. */
+/* After the n attempts with the default choices failed (err says why):
+ * the surface tree copied into Q triangulated and the overlay
+ * (SQ_TREE_QTRI; for genus 1 with the guided domain, seed 9.2 per piece),
+ * whose map the cells could not give: cid/elephant and mpz/elk, whose
+ * surface trees Q's quad grid cannot follow (docs/param.md). One attempt
+ * at a time: each may hold gigabytes. */
 static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
                               uint32_t n, sq_param *out, sq_param_stats *stats, sq_error *err)
 {
-    const int qtri = sq_mesh_genus(m) >= 2;
+    const int g1 = sq_mesh_genus(m) == 1;
     sq_param_options f = *o;
-    if (qtri) f.tree = SQ_TREE_QTRI;
-    else f.guidance = SQ_GUIDE_ON, f.tree = SQ_TREE_PAIR_EXACT, f.interior = SQ_INTERIOR_OVERLAY_CHORDS;
+    f.tree = SQ_TREE_QTRI;
+    if (g1) f.guidance = SQ_GUIDE_ON;
     f.threads = 1;
     f.attempts = n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS;
     /* the Steiner budget of the cuts stays (an attempt whose tree winds
      * fails there, early); the overlay may cross more */
-    if (!f.max_crossings)
-        f.max_crossings = sq_param_crossing_budget(&f, m->nv, m->nf, qtri ? SQ_QTRI_MAX_CROSSINGS : SQ_FALLBACK_MAX_CROSSINGS);
+    if (!f.max_crossings) f.max_crossings = sq_param_crossing_budget(&f, m->nv, m->nf, SQ_QTRI_MAX_CROSSINGS);
     if (o->progress)
-        o->progress(o->progress_ctx,
-                    qtri ? "genus>=2 fallback: surface tree copied into Q triangulated, overlay"
-                         : "genus-1 fallback: guided domain, exact tree, overlay",
-                    0.0);
+        o->progress(o->progress_ctx, "fallback: the surface tree copied into Q triangulated, overlay", 0.0);
     char first[sizeof err->msg];
     memcpy(first, err->msg, sizeof first);
     sq_param_stats fs;
@@ -202,10 +196,10 @@ static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq
     if (st != SQ_ERR_SOLVER) return st;
     char second[sizeof err->msg];
     memcpy(second, err->msg, sizeof second);
-    return sq_error_set(err, SQ_ERR_SOLVER, "%s; the %s fallback (%s; %u attempts) failed too: %s", first,
-                        qtri ? "genus>=2" : "genus-1",
-                        qtri ? "surface tree copied into Q triangulated, overlay" : "guided domain, exact tree, overlay",
-                        f.attempts, second);
+    return sq_error_set(err, SQ_ERR_SOLVER,
+                        "%s; the fallback (%sthe surface tree copied into Q triangulated, overlay; %u attempts) "
+                        "failed too: %s",
+                        first, g1 ? "guided domain, " : "", f.attempts, second);
 }
 
 sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
