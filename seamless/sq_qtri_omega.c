@@ -185,9 +185,9 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
         uint32_t h1 = SQ_NONE, x0 = S->v_he[T->root], x = x0;
         do {
             uint32_t in = S->twin[x];
-            if (S->kind[in] && S->label[in] == T->root_side && S->next[in] != SQ_NONE && in != T->root_he &&
-                sq_ts_head(S, in) == T->root && S->twin[in] != T->root_he)
-                h1 = in;
+            /* the side's other edge at the root, its face halfedge running
+             * into the root (not root_he's edge) */
+            if (S->kind[in] && S->label[in] == T->root_side && S->twin[in] != T->root_he) h1 = in;
             x = sq_ts_ccw(S, x);
         } while (x != x0);
         if (h1 == SQ_NONE || O->he_label[nh + bidx[T->root_he]] != T->root_side) {
