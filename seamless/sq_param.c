@@ -397,11 +397,20 @@ enum { TREE_REFINE = 2, ROOT_TRIES = 3 };
 
 static void domain_replace(ctx *c, sq_domain *D);
 
-static sq_status qtri_tree(ctx *c);
+/* seed 9.4: the root path leaves from the cone nearest the circle */
+static uint32_t root_step(const ctx *c)
+{
+    uint32_t rs = 0;
+    double best = -1;
+    for (uint32_t j = 0; j < c->D->ncones; j++) {
+        double r = hypot(c->step_xy[2 * j], c->step_xy[2 * j + 1]);
+        if (r > best) best = r, rs = j;
+    }
+    return rs;
+}
 
 static sq_status guided_tree(ctx *c)
 {
-    if (c->opt->tree == SQ_TREE_QTRI) return qtri_tree(c);
     const sq_metapolygon *Q = &c->D->quads;
     uint32_t n = c->D->ncones;
     size_t n1 = (size_t)n + 1;
@@ -416,13 +425,7 @@ static sq_status guided_tree(ctx *c)
     if (!qv || !att || !sv || !qa || !qs || !qf || !frac || !side || !c->q_branch || !c->s_tree_next)
         st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     if (st == SQ_OK) st = step_q_vertices(c, qv);
-    /* seed 9.4: the root path leaves from the cone nearest the circle */
-    uint32_t rs = 0;
-    double best = -1;
-    for (uint32_t j = 0; j < n; j++) {
-        double r = hypot(c->step_xy[2 * j], c->step_xy[2 * j + 1]);
-        if (r > best) best = r, rs = j;
-    }
+    uint32_t rs = root_step(c);
     /* SQ_TREE_PAIR: seed 9.4 on both disks at once, as one plane tree
      * (sq_guide_tree_pair); where that fails, as SQ_TREE_SURFACE
      * (SQ_TREE_PAIR_EXACT: the attempt fails) */
@@ -596,13 +599,7 @@ static sq_status qtri_tree(ctx *c)
             st = sq_error_set(c->err, SQ_ERR_SOLVER,
                               "tree qtri: the surface tree cannot join the cone at vertex %u (walled in by the cut)",
                               c->step_vertex[j]);
-    /* seed 9.4: the root path from the cone nearest the circle */
-    uint32_t rs = 0;
-    double far = -1;
-    for (uint32_t j = 0; j < n; j++) {
-        double r = hypot(c->step_xy[2 * j], c->step_xy[2 * j + 1]);
-        if (r > far) far = r, rs = j;
-    }
+    const uint32_t rs = root_step(c);
     sq_guide_root root = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
     if (st == SQ_OK)
         st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, c->s_tree_next, c->s_tree_next, &root, c->err);
@@ -639,7 +636,7 @@ static sq_status qtri_tree(ctx *c)
                 st = sq_error_set(c->err, SQ_ERR_INTERNAL, "tree qtri: segment %u ends at no surface node", s);
         }
     }
-    if (st == SQ_OK) c->root_surface = root.vertex, c->root_step = rs, c->tree_exact = 1;
+    if (st == SQ_OK) c->root_surface = root.vertex, c->root_step = rs;
     c->qt_verts = T.S.nv, c->qt_steiner = (uint32_t)T.splits, c->qt_edges = 0;
     for (uint32_t h = 0; h < T.S.nh; h++) c->qt_edges += T.S.kind[h] && T.S.label[h] == SQ_NONE && h < T.S.twin[h];
     sq_qtri_free(&T);
@@ -723,7 +720,8 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     double t2 = sq_now();
     progress(c, "omega", 0.2);
     st = SQ_ERR_SOLVER;
-    if (c->step_vertex && c->opt->tree != SQ_TREE_DOMAIN) st = guided_tree(c);
+    if (c->step_vertex && c->opt->tree == SQ_TREE_QTRI) st = qtri_tree(c);
+    else if (c->step_vertex && c->opt->tree != SQ_TREE_DOMAIN) st = guided_tree(c);
     if (st_out) st_out->surface_tree = st == SQ_OK;
     /* the surface tree could not be copied: Q's own tree, unless the exact
      * copy was asked for (SQ_TREE_PAIR_EXACT: the attempt fails) */
@@ -1784,12 +1782,14 @@ static sq_status boundary_map(ctx *c)
                 uint32_t ov = j < N ? W->he_vert[f] : W->he_vert[W->he_next[f]];
                 g[2 * j] = O->xy[2 * ov], g[2 * j + 1] = O->xy[2 * ov + 1];
             }
-            /* Omega's run by arc length (unit edges on Q's grid; edges of any
-             * length from Q triangulated) */
-            gfrac[0] = 0;
-            for (uint32_t j = 1; j <= N; j++)
-                gfrac[j] = gfrac[j - 1] + hypot((double)(g[2 * j] - g[2 * j - 2]), (double)(g[2 * j + 1] - g[2 * j - 1]));
-            for (uint32_t j = 1; j <= N; j++) gfrac[j] /= gfrac[N];
+            /* Omega's run by arc length where its edges are not all unit
+             * ones (Q triangulated; on Q's grid the fractions are j / N) */
+            if (O->xy_shift) {
+                gfrac[0] = 0;
+                for (uint32_t j = 1; j <= N; j++)
+                    gfrac[j] = gfrac[j - 1] + hypot((double)(g[2 * j] - g[2 * j - 2]), (double)(g[2 * j + 1] - g[2 * j - 1]));
+                for (uint32_t j = 1; j <= N; j++) gfrac[j] /= gfrac[N];
+            }
             if (primary) {
                 for (uint32_t e = 0; e < mrun[i].mn; e++) pl[e] = mseq[(mrun[i].m0 + e) % nm];
                 st = split_polyline(c, pl, mrun[i].mn, N, O->xy_shift ? gfrac : NULL, matched);
@@ -2685,7 +2685,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     progress(c, "overlay", 0.75);
     st = sq_overlay_build(nbl, na, nv, xy, &Am, &Bm,
                           c->opt->max_crossings ? c->opt->max_crossings
-                          : c->qtri ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf, SQ_QTRI_MAX_CROSSINGS)
+                          : c->qtri ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
                                                 : steiner_budget(c),
                           &X, err);
     if (st) goto done;
@@ -2911,7 +2911,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
         if (st == SQ_OK) st = replicate_tree(&c, root_he);
     }
     if (st) goto done;
-    stats->tree_pair = c.tree_exact && !c.qtri;
+    stats->tree_pair = c.tree_exact;
     stats->tree_qtri = c.qtri, stats->qtri_verts = c.qt_verts, stats->qtri_steiner = c.qt_steiner;
     double t1 = sq_now();
     progress(&c, "boundary map", 0.45);

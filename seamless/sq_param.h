@@ -75,8 +75,8 @@ typedef struct sq_param_options {
     uint64_t max_steiner;
     /* Crossings of surface and domain edges the overlay (step 7') may make
      * before it gives up (SQ_ERR_SOLVER); 0: the Steiner budget above (with
-     * SQ_TREE_QTRI: 400 per input face, at most 10,000,000; in the genus-1
-     * fallback at most 4,500,000; at least the Steiner budget). */
+     * SQ_TREE_QTRI and in the fallback: 400 per input face, at most
+     * 10,000,000, at least the Steiner budget). */
     uint64_t max_crossings;
     /* Attempts run at once, each in its own thread (default 1; 0 counts
      * as 1). The result is the same as with 1: the lowest attempt that
@@ -115,7 +115,6 @@ enum { SQ_SIMPLIFY_ON = 0, SQ_SIMPLIFY_OFF = 1 };
 enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
 #define SQ_FALLBACK_ATTEMPTS 4
 #define SQ_FALLBACK_PER_FACE 400u
-#define SQ_FALLBACK_MAX_CROSSINGS 4500000u
 #define SQ_QTRI_MAX_CROSSINGS 10000000u
 
 #define SQ_PARAM_REFINE 8
@@ -135,8 +134,9 @@ enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
  *    Steiner vertex; where that fails, as SQ_TREE_SURFACE. Experimental:
  *    it makes mpz/elk pass with the overlay (docs/param.md);
  *  SQ_TREE_PAIR_EXACT: the same, but where the exact copy fails the
- *    attempt fails (SQ_ERR_SOLVER): the genus-1 fallback's choice, whose
- *    overlay has no chance on the surface tree's winding paths;
+ *    attempt fails (SQ_ERR_SOLVER): the genus-1 fallback's choice until
+ *    session 11, whose overlay has no chance on the surface tree's winding
+ *    paths;
  *  SQ_TREE_QTRI: seed 9.4 as the seed does it: the surface tree copied
  *    into Q triangulated, room made by edge splits along the paths only
  *    (sq_qtri.h), Omega laid out from it (triangles, dyadic positions) and
@@ -201,10 +201,9 @@ typedef struct sq_param_stats {
                                             /* triangulated (triangles)       */
     uint32_t qtri_verts;                    /* its vertices, with the tree's  */
     uint32_t qtri_steiner;                  /* Steiner vertices among them    */
-    int fallback;                           /* 1: a fallback made (genus 1:   */
-                                            /* exact tree; genus >= 2: tree   */
-                                            /* qtri, tree_qtri set)           */
-                                            /* it (SQ_FALLBACK_AUTO)          */
+    int fallback;                           /* 1: the fallback made the map   */
+                                            /* (SQ_FALLBACK_AUTO; tree qtri,  */
+                                            /* so tree_qtri is set)           */
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
     double t_overlay; /* step 7' (after the cells by default; kept or not) */

@@ -146,11 +146,11 @@ static sq_status run_attempts(const sq_mesh *m, const int32_t *valence, const sq
     return st;
 }
 
-uint64_t sq_param_crossing_budget(const sq_param_options *o, uint32_t nv, uint32_t nf, uint64_t cap)
+uint64_t sq_param_crossing_budget(const sq_param_options *o, uint32_t nv, uint32_t nf)
 {
     uint64_t base = sq_param_steiner_budget(o, nv);
     uint64_t per = SQ_FALLBACK_PER_FACE * (uint64_t)nf;
-    if (per > cap) per = cap;
+    if (per > SQ_QTRI_MAX_CROSSINGS) per = SQ_QTRI_MAX_CROSSINGS;
     return per > base ? per : base;
 }
 
@@ -179,7 +179,7 @@ static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq
     f.attempts = n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS;
     /* the Steiner budget of the cuts stays (an attempt whose tree winds
      * fails there, early); the overlay may cross more */
-    if (!f.max_crossings) f.max_crossings = sq_param_crossing_budget(&f, m->nv, m->nf, SQ_QTRI_MAX_CROSSINGS);
+    if (!f.max_crossings) f.max_crossings = sq_param_crossing_budget(&f, m->nv, m->nf);
     if (o->progress)
         o->progress(o->progress_ctx, "fallback: the surface tree copied into Q triangulated, overlay", 0.0);
     char first[sizeof err->msg];

@@ -29,11 +29,10 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
 /* Steiner vertices an attempt may add (sq_param_options.max_steiner, or
  * 9 per input vertex + 100000). */
 uint64_t sq_param_steiner_budget(const sq_param_options *opt, uint32_t nv_input);
-/* The overlay's crossing budget of the fallbacks and of SQ_TREE_QTRI when
- * max_crossings is 0: SQ_FALLBACK_PER_FACE per input face, at most cap
- * (SQ_FALLBACK_MAX_CROSSINGS, SQ_QTRI_MAX_CROSSINGS), at least the Steiner
- * budget. */
-uint64_t sq_param_crossing_budget(const sq_param_options *opt, uint32_t nv, uint32_t nf, uint64_t cap);
+/* The overlay's crossing budget of SQ_TREE_QTRI (and so of the fallback)
+ * when max_crossings is 0: SQ_FALLBACK_PER_FACE per input face, at most
+ * SQ_QTRI_MAX_CROSSINGS, at least the Steiner budget. */
+uint64_t sq_param_crossing_budget(const sq_param_options *opt, uint32_t nv, uint32_t nf);
 
 /* The colour of a cone of valence k in the pictures (sq_param_io.c). */
 const char *sq_param_valence_colour(int32_t k);

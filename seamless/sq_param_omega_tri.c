@@ -135,25 +135,28 @@ sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *
     for (uint32_t h = 0; h < W->nh; h++)
         if (W->he_face[h] != SQ_NONE && cell_side(W, chord, h) && wid[W->he_vert[h]] == SQ_NONE)
             wid[W->he_vert[h]] = nv++;
-    /* a centre per cell, but not for a triangle of Omega (from Q
-     * triangulated) whose sides carry no surface point and need no
-     * midpoint: that triangle is one of B's as it is */
-    for (uint32_t k = 0; k < ncells && st == SQ_OK; k++) {
-        cid_of[k] = SQ_NONE;
-        uint32_t h = cstart[k];
-        int tri = !C && h != SQ_NONE && W->f_valence[W->he_face[h]] == 3, need = !tri;
-        for (int e = 0; tri && e < 3; e++, h = W->he_next[h]) {
-            uint32_t t = W->he_twin[h];
-            if (opos[h] != SQ_NONE && (bstart[opos[h]] + 1) % nbl != bstart[(opos[h] + 1) % nb]) need = 1;
-            if (W->he_face[t] != SQ_NONE && wid[W->he_vert[h]] < nbl && wid[W->he_vert[t]] < nbl) need = 1;
-        }
-        if (need) cid_of[k] = nv++;
-    }
+    /* interior edges joining two boundary vertices get a midpoint (no
+     * dividing edge); numbered after the centres */
+    const uint32_t WANTED = SQ_NONE - 1;
     for (uint32_t h = 0; h < W->nh; h++) {
         uint32_t t = W->he_twin[h];
         if (W->he_face[h] == SQ_NONE || W->he_face[t] == SQ_NONE || t < h || !cell_side(W, chord, h)) continue;
-        if (wid[W->he_vert[h]] < nbl && wid[W->he_vert[t]] < nbl) mid[h] = mid[t] = nv++;
+        if (wid[W->he_vert[h]] < nbl && wid[W->he_vert[t]] < nbl) mid[h] = mid[t] = WANTED;
     }
+    /* a centre per cell, but not for a triangle of Omega (from Q
+     * triangulated) whose sides carry no surface point and need no
+     * midpoint: that triangle is one of B's as it is */
+    for (uint32_t k = 0; k < ncells; k++) {
+        cid_of[k] = SQ_NONE;
+        uint32_t h = cstart[k];
+        int tri = !C && h != SQ_NONE && W->f_valence[W->he_face[h]] == 3, need = !tri;
+        for (int e = 0; tri && e < 3; e++, h = W->he_next[h])
+            if (mid[h] != SQ_NONE || (opos[h] != SQ_NONE && (bstart[opos[h]] + 1) % nbl != bstart[(opos[h] + 1) % nb]))
+                need = 1;
+        if (need) cid_of[k] = nv++;
+    }
+    for (uint32_t h = 0; h < W->nh; h++)
+        if (mid[h] == WANTED && h < W->he_twin[h]) mid[h] = mid[W->he_twin[h]] = nv++;
     uint32_t layer0 = nv, next = 0;
     for (int pass = 0; pass < 2 && st == SQ_OK; pass++) {
         if (pass == 1) {

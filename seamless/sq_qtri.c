@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sq_edge_hash.h"
 #include "sq_predicates.h"
 #include "sq_soup.h"
 
@@ -69,32 +70,12 @@ static uint32_t s_he_in_quad(const sq_tsurf *S, uint32_t f, uint32_t a, uint32_t
 /* the two triangles of a quad along diagonal c0-c2 (0) or c1-c3 (1) */
 static const int quad_tri[2][2][3] = {{{0, 1, 2}, {0, 2, 3}}, {{1, 2, 3}, {1, 3, 0}}};
 
-/* a set of undirected edges (open addressing; at most half full) */
-typedef struct edge_set {
-    size_t cap;
-    uint64_t *key; /* UINT64_MAX: empty */
-} edge_set;
-
-static int edge_set_init(edge_set *E, size_t n)
+/* adds the undirected edge a-b to E; returns 1 if it was there already */
+static int edge_set_add(sq_edge_hash *E, uint32_t a, uint32_t b)
 {
-    E->cap = 16;
-    while (E->cap < 2 * n) E->cap *= 2;
-    E->key = malloc(E->cap * sizeof *E->key);
-    if (!E->key) return -1;
-    for (size_t i = 0; i < E->cap; i++) E->key[i] = UINT64_MAX;
-    return 0;
-}
-
-/* adds a-b; returns 1 if it was there already */
-static int edge_set_add(edge_set *E, uint32_t a, uint32_t b)
-{
-    uint64_t k = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
-    size_t i = (size_t)((k * 0x9e3779b97f4a7c15ull) >> 20) & (E->cap - 1);
-    while (E->key[i] != UINT64_MAX) {
-        if (E->key[i] == k) return 1;
-        i = (i + 1) & (E->cap - 1);
-    }
-    E->key[i] = k;
+    size_t i = sq_edge_hash_slot(E, a < b ? a : b, a < b ? b : a);
+    if (E->val[i] != SQ_NONE) return 1;
+    E->val[i] = 1;
     return 0;
 }
 
@@ -110,7 +91,7 @@ sq_status sq_qtri_build(const sq_domain *D, const double *xy, sq_qtri *T, sq_err
     int32_t *val = NULL;
     uint32_t *side = NULL;
     uint8_t *diag = NULL;
-    edge_set es = {0, NULL};
+    sq_edge_hash es = {0, NULL, NULL};
     T->nq = Q->nv;
     T->closed_of = malloc(((size_t)Q->nv + 1) * sizeof *T->closed_of);
     if (!T->closed_of) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Q triangulated)");
@@ -129,7 +110,7 @@ sq_status sq_qtri_build(const sq_domain *D, const double *xy, sq_qtri *T, sq_err
      * diagonal where c0-c2 is an edge already (two quads around a cone of
      * valence 2 share two sides; their diagonals may join the same pair) */
     diag = calloc((size_t)quads.nf + 1, 1);
-    if (!diag || edge_set_init(&es, 6 * (size_t)quads.nf + 16)) {
+    if (!diag || sq_edge_hash_init(&es, 6 * (size_t)quads.nf + 16)) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Q triangulated)");
         goto done;
     }
@@ -216,7 +197,7 @@ done:
     free(val);
     free(side);
     free(diag);
-    free(es.key);
+    sq_edge_hash_free(&es);
     if (st) sq_qtri_free(T);
     return st;
 }
@@ -494,16 +475,10 @@ sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, co
             }
             if (!is_root) cone_free[T->cone[j]] = 0;
             T->splits += S->nv - nv0;
-            if (st == SQ_ERR_INTERNAL) {
+            if (st == SQ_ERR_INTERNAL && err) { /* name the step */
                 char why[sizeof err->msg];
-                memcpy(why, err ? err->msg : "", err ? sizeof why : 1);
-                uint32_t nsec = 0;
-                for (uint32_t g = start;;) {
-                    nsec++;
-                    g = sq_ts_ccw(S, g);
-                    if (S->kind[g] || g == start) break;
-                }
-                st = sq_error_set(err, SQ_ERR_INTERNAL, "tree copy: step %u of %u (sector of %u faces at %u, %u tree edges; cone %u valence %d cut %u): %s", j, n, nsec, xc, S->v_ncut[xc], T->cone[j < n ? j : 0], S->valence[T->cone[j < n ? j : 0]], S->v_ncut[T->cone[j < n ? j : 0]], why);
+                memcpy(why, err->msg, sizeof why);
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "tree copy: step %u of %u: %s", j, n, why);
             }
         }
         if (st) break;
@@ -553,7 +528,7 @@ static void place_face(const sq_tsurf *S, uint32_t h, const double P[2], uint8_t
     }
 }
 
-sq_status sq_qtri_layout(const sq_qtri *T, double *cxy, uint8_t *f_rot, sq_error *err)
+sq_status sq_qtri_layout(const sq_qtri *T, double *cxy, sq_error *err)
 {
     const sq_tsurf *S = &T->S;
     uint32_t *queue = malloc(((size_t)S->nf + 1) * sizeof *queue);
@@ -566,7 +541,7 @@ sq_status sq_qtri_layout(const sq_qtri *T, double *cxy, uint8_t *f_rot, sq_error
     const double origin[2] = {0, 0};
     uint32_t nq = 0;
     place_face(S, S->f_he[0], origin, 0, cxy);
-    f_rot[0] = 0, seen[0] = 1, queue[nq++] = 0;
+    seen[0] = 1, queue[nq++] = 0;
     for (uint32_t i = 0; i < nq && st == SQ_OK; i++) {
         uint32_t f = queue[i], h = S->f_he[f];
         for (int e = 0; e < 3; e++, h = S->next[h]) {
@@ -594,7 +569,7 @@ sq_status sq_qtri_layout(const sq_qtri *T, double *cxy, uint8_t *f_rot, sq_error
                 break;
             }
             place_face(S, t, B, k, cxy);
-            f_rot[g] = k, seen[g] = 1, queue[nq++] = g;
+            seen[g] = 1, queue[nq++] = g;
         }
     }
     if (st == SQ_OK && nq != S->nf)

@@ -96,14 +96,14 @@ sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, co
 /* Omega's layout from T (seed 7: "the cut quad mesh Q can be laid out
  * isometrically in the plane"): S cut along its cut edges (Q's boundary
  * and the tree) is a disk, laid out face by face across uncut edges, each
- * face by its flat vectors turned by a multiple of 90 degrees (f_rot, S.nf
- * entries, caller-owned), with face 0's frame the plane's. corner_xy (2
+ * face by its flat vectors turned by a multiple of 90 degrees, with face
+ * 0's frame the plane's. corner_xy (2
  * S.nh, caller-owned): the position of each halfedge's origin in its face.
  * Every position is a dyadic rational, exact in doubles. Checked: the two
  * faces of every uncut edge agree on its ends, bit for bit; every face is
  * reached and positively oriented (exact predicate). SQ_ERR_INTERNAL names
  * the first violation. */
-sq_status sq_qtri_layout(const sq_qtri *T, double *corner_xy, uint8_t *f_rot, sq_error *err);
+sq_status sq_qtri_layout(const sq_qtri *T, double *corner_xy, sq_error *err);
 
 /* The transition across the cut edge of halfedge h (corner_xy from
  * sq_qtri_layout): the motion y = R^rot x + t taking h's face's copy of the

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sq_edge_hash.h"
 #include "sq_predicates.h"
 #include "sq_qtri.h"
 
@@ -38,16 +39,15 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
     uint32_t *wv = malloc((size_t)nh * sizeof *wv);      /* corner -> vertex of Omega_c   */
     uint32_t *vid = malloc((size_t)S->nv * sizeof *vid); /* uncut vertex -> its vertex    */
     double *cxy = malloc(2 * (size_t)nh * sizeof *cxy);
-    uint8_t *frot = malloc((size_t)S->nf + 1);
     uint32_t *par = malloc((size_t)S->nv * sizeof *par), *queue = malloc((size_t)S->nv * sizeof *queue);
     uint32_t *seg_he = malloc((size_t)nh * sizeof *seg_he); /* tree halfedge away from the root -> segment */
     uint32_t *from = NULL, *to = NULL, nseg = 0;
     sq_status st = SQ_OK;
-    if (!bidx || !wv || !vid || !cxy || !frot || !par || !queue || !seg_he) {
+    if (!bidx || !wv || !vid || !cxy || !par || !queue || !seg_he) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
         goto done;
     }
-    st = sq_qtri_layout(T, cxy, frot, err);
+    st = sq_qtri_layout(T, cxy, err);
     if (st) goto done;
     /* vertices */
     uint32_t nb = 0, nw = 0;
@@ -254,7 +254,7 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
     *nseg_out = nseg, *seg_from = from, *seg_to = to;
     from = to = NULL;
 done:
-    free(bidx), free(wv), free(vid), free(cxy), free(frot), free(par), free(queue), free(seg_he);
+    free(bidx), free(wv), free(vid), free(cxy), free(par), free(queue), free(seg_he);
     free(from), free(to);
     if (st) sq_omega_free(O);
     return st;
@@ -280,17 +280,6 @@ static int vlist_add(vlist *L, uint32_t f)
 }
 
 static int tri_has(const uint32_t *t, uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
-
-/* the slot of (a, b) in an open-addressing table of cap (a power of two)
- * keys, claimed if empty */
-static size_t edge_slot(uint64_t *key, size_t cap, uint32_t a, uint32_t b)
-{
-    uint64_t k = (uint64_t)a << 32 | b;
-    size_t i = (size_t)((k * 0x9e3779b97f4a7c15ull) >> 17) & (cap - 1);
-    while (key[i] != UINT64_MAX && key[i] != k) i = (i + 1) & (cap - 1);
-    key[i] = k;
-    return i;
-}
 
 /* whether collapsing inner vertex v into its neighbour w keeps a valid
  * triangulation: the link condition (v and w share exactly the two
@@ -430,18 +419,12 @@ sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
     if (st) goto done;
     N.nv = mv, N.nf = mf, N.nh = mh, N.nbnd = nbh;
     /* face halfedges 3f' + k; twins by a hash of (tail, head) */
-    size_t cap = 16;
-    while (cap < 2 * (size_t)mh) cap *= 2;
-    uint64_t *key = malloc(cap * sizeof *key);
-    uint32_t *kval = malloc(cap * sizeof *kval);
+    sq_edge_hash E = {0, NULL, NULL};
     hmap = malloc((size_t)nh * sizeof *hmap);
-    if (!key || !kval || !hmap) {
-        free(key), free(kval);
+    if (!hmap || sq_edge_hash_init(&E, mh)) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
         goto done;
     }
-    for (size_t i = 0; i < cap; i++) key[i] = UINT64_MAX;
-#define SLOT(a, b) edge_slot(key, cap, a, b)
     for (uint32_t v = 0; v < mv; v++) N.v_nface[v] = 0, N.v_he[v] = SQ_NONE;
     uint32_t ff = 0;
     for (uint32_t f = 0; f < nf; f++) {
@@ -451,7 +434,7 @@ sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
             N.he_vert[h] = a, N.he_next[h] = 3 * ff + (k + 1) % 3, N.he_face[h] = ff, N.he_twin[h] = SQ_NONE;
             N.v_nface[a]++;
             if (N.v_he[a] == SQ_NONE) N.v_he[a] = h;
-            kval[SLOT(a, b)] = h;
+            E.val[sq_edge_hash_slot(&E, a, b)] = h;
         }
         N.f_he[ff] = 3 * ff, N.f_valence[ff] = 3;
         ff++;
@@ -466,27 +449,25 @@ sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
         if (hmap[h] == SQ_NONE) continue;
         uint32_t b = hmap[h], a0 = vnew[W->he_vert[h]], a1 = vnew[W->he_vert[W->he_next[h]]];
         N.he_vert[b] = a0, N.he_next[b] = hmap[W->he_next[h]], N.he_face[b] = SQ_NONE;
-        size_t s = SLOT(a1, a0);
-        if (key[s] != ((uint64_t)a1 << 32 | a0) || kval[s] == SQ_NONE) {
+        uint32_t f = E.val[sq_edge_hash_slot(&E, a1, a0)];
+        if (f == SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "coarsen: boundary edge %u-%u lost its face", a0, a1);
             break;
         }
-        /* (kval stays valid: the slot was filled by a face halfedge) */
-        N.he_twin[b] = kval[s], N.he_twin[kval[s]] = b;
+        N.he_twin[b] = f, N.he_twin[f] = b;
         N.v_he[a0] = b;
     }
     for (uint32_t h = 0; h < 3 * mf && st == SQ_OK; h++) {
         if (N.he_twin[h] != SQ_NONE) continue;
         uint32_t a = N.he_vert[h], b = N.he_vert[N.he_next[h]];
-        size_t s = SLOT(b, a);
-        if (key[s] != ((uint64_t)b << 32 | a)) {
+        uint32_t t = E.val[sq_edge_hash_slot(&E, b, a)];
+        if (t == SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "coarsen: edge %u-%u has no twin", a, b);
             break;
         }
-        N.he_twin[h] = kval[s];
+        N.he_twin[h] = t;
     }
-#undef SLOT
-    free(key), free(kval);
+    sq_edge_hash_free(&E);
     if (st) goto done;
     N.bnd_he = hmap[W->bnd_he];
     st = sq_metapolygon_validate(&N, 0, err);

@@ -252,8 +252,7 @@ static void run_model(const char *name, uint64_t seed)
          * turn by a multiple of 90 degrees and an integer translation, the
          * same along every tree segment and every side (but the root's) */
         double *cxy = malloc(2 * S->nh * sizeof *cxy);
-        uint8_t *frot = malloc(S->nf);
-        if (sq_qtri_layout(&T, cxy, frot, &err)) fail_msg("%s seed %llu: %s", name, (unsigned long long)seed, err.msg);
+        if (sq_qtri_layout(&T, cxy, &err)) fail_msg("%s seed %llu: %s", name, (unsigned long long)seed, err.msg);
         uint32_t ncut = 0, changes = 0;
         for (uint32_t h = 0; h < S->nh; h++) {
             if (!S->kind[h]) continue;
@@ -275,7 +274,7 @@ static void run_model(const char *name, uint64_t seed)
         /* (the root, where its side's transition changes, is a node, and
          * a side's two ends are corners, where the label changes) */
         assert_int_equal(changes, 0);
-        free(cxy), free(frot);
+        free(cxy);
         /* Omega as an sq_omega: a disk of T's faces, every label one
          * transition, the root splitting its side */
         sq_omega O;
