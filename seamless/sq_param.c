@@ -44,6 +44,7 @@ void sq_param_free(sq_param *P)
     free(P->he_seam);
     free(P->he_cut);
     free(P->valence);
+    free(P->he_twin);
     if (P->domain) sq_domain_free(P->domain);
     if (P->tree) sq_cone_tree_free(P->tree);
     if (P->omega) sq_omega_free(P->omega);
@@ -2757,6 +2758,8 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
         P->he_seam[k] = P->tri_uv[k] != P->tri_uv[pm.he_next[g]] || P->tri_uv[pm.he_next[k]] != P->tri_uv[g];
         if (P->he_seam[k] && k < g) seams++;
     }
+    /* the twins go with P: sq_param_simplify need not build them again */
+    P->he_twin = pm.he_twin, pm.he_twin = NULL;
     for (uint32_t f = 0; f < X.ntri; f++)
         if (sq_orient2d(P->uv + 2 * (size_t)P->tri_uv[3 * f], P->uv + 2 * (size_t)P->tri_uv[3 * f + 1],
                         P->uv + 2 * (size_t)P->tri_uv[3 * f + 2]) <= 0) {

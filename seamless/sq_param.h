@@ -232,6 +232,9 @@ typedef struct sq_param {
                         /* cone tree), 2 on a chord (a cell side inside    */
                         /* Omega); for diagnosis (sq_param_cells)          */
     int32_t *valence;   /* nv_input: the prescribed valences (4 = regular) */
+    uint32_t *he_twin;  /* 3 nf or NULL: the corner across each edge, kept */
+                        /* from the construction for sq_param_simplify     */
+                        /* (which derives it where NULL, and frees it)     */
     /* The combinatorial domain and Omega, kept for pictures
      * (sq_domain_write_svg, sq_omega_write_svg); opaque here. */
     void *domain;       /* sq_domain *                                     */
