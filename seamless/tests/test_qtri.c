@@ -99,6 +99,26 @@ static int same_cycle(const uint64_t *a, const uint64_t *b, uint32_t n)
     return 0;
 }
 
+/* the worst triangle of O by 4 sqrt(3) area / (sum of squared edges) */
+static double worst_quality(const sq_omega *O)
+{
+    double worst = 1;
+    for (uint32_t f = 0; f < O->cut.nf; f++) {
+        uint32_t h = O->cut.f_he[f];
+        double q[3][2], s = 0;
+        for (int i = 0; i < 3; i++, h = O->cut.he_next[h])
+            q[i][0] = (double)O->xy[2 * O->cut.he_vert[h]], q[i][1] = (double)O->xy[2 * O->cut.he_vert[h] + 1];
+        for (int i = 0; i < 3; i++) {
+            double dx = q[(i + 1) % 3][0] - q[i][0], dy = q[(i + 1) % 3][1] - q[i][1];
+            s += dx * dx + dy * dy;
+        }
+        double a2 = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]);
+        double qual = 2 * sqrt(3.0) * a2 / s;
+        if (qual < worst) worst = qual;
+    }
+    return worst;
+}
+
 static void run_model(const char *name, uint64_t seed)
 {
     char path[256];
@@ -294,7 +314,10 @@ static void run_model(const char *name, uint64_t seed)
         uint32_t *lab0 = malloc(nb0 * sizeof *lab0);
         for (uint32_t i = 0, b = O.cut.bnd_he; i < nb0; i++, b = O.cut.he_next[b]) lab0[i] = O.he_label[b];
         uint32_t removed = 0;
+        const double q0 = worst_quality(&O);
         assert_int_equal(sq_omega_coarsen(&O, &removed, &err), SQ_OK);
+        /* no sliver made: the worst shape is no worse than before */
+        assert_true(worst_quality(&O) >= q0);
         assert_int_equal(sq_metapolygon_validate(&O.cut, 0, &err), SQ_OK);
         assert_int_equal(O.cut.nbnd, nb0);
         assert_true(O.cut.nf < nf0 && removed > 0);
