@@ -95,14 +95,14 @@ typedef struct sq_param_options {
      * check still holds); SQ_SIMPLIFY_OFF: the map as built. */
     int simplify;
     /* SQ_FALLBACK_AUTO (default): for genus >= 1 with the other choices
-     * at their defaults, when every attempt fails on the map
-     * (SQ_ERR_SOLVER), up to 4 more attempts (from the same seed, one at a
-     * time) with SQ_TREE_QTRI (genus 1: with SQ_GUIDE_ON), the same
-     * Steiner budget and a crossing budget of 400 per input face (at most
-     * 10,000,000; max_crossings, when given, instead): slow (tens of
-     * seconds to minutes, up to about 3 GB) but it passes mpz/elk and
-     * cid/elephant, which nothing else does (docs/param.md).
-     * SQ_FALLBACK_OFF: none. */
+     * at their defaults, when the first SQ_FALLBACK_AFTER (2) attempts
+     * fail on the map (SQ_ERR_SOLVER), up to 4 attempts (from the same
+     * seed, one at a time) with SQ_TREE_QTRI (genus 1: with SQ_GUIDE_ON),
+     * the same Steiner budget and a crossing budget of 400 per input face
+     * (at most 10,000,000; max_crossings, when given, instead); where
+     * those fail too, the other attempts with the default choices. It
+     * passes mpz/elk and cid/elephant, which nothing else does, in tens
+     * of seconds (docs/param.md). SQ_FALLBACK_OFF: none. */
     int fallback;
 } sq_param_options;
 
@@ -114,6 +114,7 @@ enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2, SQ_
 enum { SQ_SIMPLIFY_ON = 0, SQ_SIMPLIFY_OFF = 1 };
 enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
 #define SQ_FALLBACK_ATTEMPTS 4
+#define SQ_FALLBACK_AFTER 2
 #define SQ_FALLBACK_PER_FACE 400u
 #define SQ_QTRI_MAX_CROSSINGS 10000000u
 

@@ -162,21 +162,23 @@ static int uses_fallback(const sq_param_options *o, int64_t genus)
            o->tree == SQ_TREE_SURFACE && o->interior == SQ_INTERIOR_AUTO && !o->allow_flips;
 }
 
-/* After the n attempts with the default choices failed (err says why):
- * the surface tree copied into Q triangulated and the overlay
+/* After the first n attempts with the default choices failed (err says
+ * why; total: the attempts asked for, 4 at most here, *tried: n and the
+ * fallback's): the surface tree copied into Q triangulated and the overlay
  * (SQ_TREE_QTRI; for genus 1 with the guided domain, seed 9.2 per piece),
  * whose map the cells could not give: cid/elephant and mpz/elk, whose
  * surface trees Q's quad grid cannot follow (docs/param.md). One attempt
  * at a time: each may hold gigabytes. */
 static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
-                              uint32_t n, sq_param *out, sq_param_stats *stats, sq_error *err)
+                              uint32_t n, uint32_t total, uint32_t *tried, sq_param *out, sq_param_stats *stats,
+                              sq_error *err)
 {
     const int g1 = sq_mesh_genus(m) == 1;
     sq_param_options f = *o;
     f.tree = SQ_TREE_QTRI;
     if (g1) f.guidance = SQ_GUIDE_ON;
     f.threads = 1;
-    f.attempts = n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS;
+    f.attempts = total < SQ_FALLBACK_ATTEMPTS ? total : SQ_FALLBACK_ATTEMPTS;
     /* the Steiner budget of the cuts stays (an attempt whose tree winds
      * fails there, early); the overlay may cross more */
     if (!f.max_crossings) f.max_crossings = sq_param_crossing_budget(&f, m->nv, m->nf);
@@ -187,6 +189,7 @@ static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq
     sq_param_stats fs;
     memset(&fs, 0, sizeof fs);
     sq_status st = run_attempts(m, valence, &f, f.attempts, 0, 1, out, &fs, err);
+    *tried = n + f.attempts;
     if (st == SQ_OK) {
         fs.attempts += n;
         fs.fallback = 1;
@@ -225,9 +228,35 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     const int alternate = sq_param_uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
     uint32_t threads = o.threads ? o.threads : 1;
     if (threads > n) threads = n;
-    st = run_attempts(m, valence, &o, n, alternate, threads, out, stats, err);
-    if (st == SQ_ERR_SOLVER && uses_fallback(&o, sq_mesh_genus(m)))
-        st = run_fallback(m, valence, &o, n, out, stats, err);
+    /* with the fallback: the default choices' first SQ_FALLBACK_AFTER
+     * attempts (one round of two threads), the fallback, then the default
+     * choices' other attempts. Where the first two fail, the later ones
+     * rarely pass (block at the 15th, fertility_tri at the 7th, femur at
+     * the 3rd; elephant at none of 16, which cost it 36 to 54 s before the
+     * fallback), and the fallback's maps are far less distorted (mean
+     * conformal ratio 129 against 3.7e8 on block; docs/param.md) */
+    const int fb = uses_fallback(&o, sq_mesh_genus(m));
+    const uint32_t first = fb && n > SQ_FALLBACK_AFTER ? SQ_FALLBACK_AFTER : n;
+    st = run_attempts(m, valence, &o, first, alternate, threads < first ? threads : first, out, stats, err);
+    if (st == SQ_ERR_SOLVER && fb) {
+        uint32_t tried = first;
+        st = run_fallback(m, valence, &o, first, n, &tried, out, stats, err);
+        if (st == SQ_ERR_SOLVER && first < n) {
+            char before[sizeof err->msg];
+            memcpy(before, err->msg, sizeof before);
+            sq_param_options rest = o;
+            rest.seed = o.seed + (alternate ? first / 2 : first);
+            st = run_attempts(m, valence, &rest, n - first, alternate, threads < n - first ? threads : n - first,
+                              out, stats, err);
+            if (st == SQ_OK) stats->attempts += tried;
+            else if (st == SQ_ERR_SOLVER) {
+                char last[sizeof err->msg];
+                memcpy(last, err->msg, sizeof last);
+                st = sq_error_set(err, SQ_ERR_SOLVER, "%s; then attempts %u to %u with the default choices: %s",
+                                  before, tried + 1, tried + n - first, last);
+            }
+        }
+    }
     if (st == SQ_OK && o.simplify != SQ_SIMPLIFY_OFF && !o.allow_flips) {
         double t = sq_now();
         stats->faces_unsimplified = out->nf;
