@@ -142,7 +142,7 @@ static int try_collapse(simp *s, uint32_t v, const uint32_t *cs, uint32_t d, uin
             sq_orient2d(qw, UVP(s, P->tri_uv[sq_param_corner_next(cs[i])]),
                         UVP(s, P->tri_uv[sq_param_corner_prev(cs[i])])) <= 0)
             return 0;
-    double key_new = 0, uv_sum = 0, side_sum[2] = {0, 0};
+    double uv_sum = 0, side_sum[2] = {0, 0}, sn_of[MAX_DEGREE];
     uint32_t side_face = P->tri_in[cs[0] / 3];
     for (uint32_t i = 0; i < d; i++) {
         if (i == jm || i == j) continue;
@@ -156,11 +156,19 @@ static int try_collapse(simp *s, uint32_t v, const uint32_t *cs, uint32_t d, uin
         sub3(pa, pw, ea), sub3(pb, pw, eb), cross3(ea, eb, x);
         double sn = dot3(x, n);
         if (!(sn > SIN_MARGIN * sqrt(dot3(ea, ea) * dot3(eb, eb)))) return 0;
-        double k = conformal_key(pw, pa, pb, qw, qa, qb);
-        if (k > key_old) return 0;
-        if (k > key_new) key_new = k;
-        uv_sum += uv_angle(qw, qa, qb);
-        side_sum[f != side_face] += atan2(sn, dot3(ea, eb));
+        if (conformal_key(pw, pa, pb, qw, qa, qb) > key_old) return 0;
+        sn_of[i] = sn;
+    }
+    /* the turning of the new fans (only where every triangle passed: the
+     * arctangents are the dearest part of a try, and most tries fail) */
+    for (uint32_t i = 0; i < d; i++) {
+        if (i == jm || i == j) continue;
+        uint32_t c = cs[i], cn = sq_param_corner_next(c), cp = sq_param_corner_prev(c);
+        const double *pa = POS(s, P->tri[cn]), *pb = POS(s, P->tri[cp]);
+        double ea[3], eb[3];
+        sub3(pa, pw, ea), sub3(pb, pw, eb);
+        uv_sum += uv_angle(qw, UVP(s, P->tri_uv[cn]), UVP(s, P->tri_uv[cp]));
+        side_sum[P->tri_in[c / 3] != side_face] += atan2(sn_of[i], dot3(ea, eb));
     }
     if (!(uv_sum < TWO_PI * (1 - 1e-9)) || !(side_sum[0] < TWO_PI * (1 - 1e-9)) ||
         !(side_sum[1] < TWO_PI * (1 - 1e-9)))
