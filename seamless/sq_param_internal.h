@@ -43,8 +43,8 @@ void sq_param_distortion(const sq_param *P, sq_param_stats *stats);
 
 /* The next and the previous corner of corner c in its triangle (corners
  * 3 f, 3 f + 1, 3 f + 2; the edge from corner c runs to the next one). */
-static inline uint32_t sq_param_corner_next(uint32_t c) { return c - c % 3 + (c % 3 + 1) % 3; }
-static inline uint32_t sq_param_corner_prev(uint32_t c) { return c - c % 3 + (c % 3 + 2) % 3; }
+static inline uint32_t sq_param_corner_next(uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
+static inline uint32_t sq_param_corner_prev(uint32_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
 
 /* ---- step 7' (the overlay; sq_param.c) ---------------------------------- */
 
