@@ -3021,10 +3021,10 @@ finish:
     stats->t_tutte = t4 - t3;
     stats->t_check = t5 - t4 - t_overlay;
     stats->t_overlay = t_overlay;
-    if (stats->overlay && opt->interior != SQ_INTERIOR_AUTO) /* step 7' alone: no Tutte of cells */
+    if (stats->overlay && (opt->interior != SQ_INTERIOR_AUTO || c.qtri)) /* step 7' alone: no Tutte of cells */
         stats->t_overlay = stats->t_tutte, stats->t_tutte = 0;
     stats->t_total = t5 - t_start;
-    progress(&c, "done", 1.0);
+    progress(&c, "map built", 0.9);
 done:
     if (st) sq_param_free(out);
     sq_tsurf_free(&c.S);

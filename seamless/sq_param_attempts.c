@@ -259,6 +259,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     }
     if (st == SQ_OK && o.simplify != SQ_SIMPLIFY_OFF && !o.allow_flips) {
         double t = sq_now();
+        if (o.progress) o.progress(o.progress_ctx, "simplify", 0.95);
         stats->faces_unsimplified = out->nf;
         st = sq_param_simplify(m, out, &stats->simplified, err);
         if (st) sq_param_free(out);
