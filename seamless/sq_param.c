@@ -192,6 +192,10 @@ uint64_t sq_param_steiner_budget(const sq_param_options *opt, uint32_t nv_input)
 
 static uint64_t steiner_budget(const ctx *c) { return sq_param_steiner_budget(c->opt, c->S.nv_input); }
 
+/* the distortion statistics are left to sq_param_build, which measures
+ * them after the simplification (of a map 2 to 13 times smaller) */
+static int distortion_later(const ctx *c) { return c->opt->simplify != SQ_SIMPLIFY_OFF && !c->opt->allow_flips; }
+
 static int cancelled(const ctx *c) { return c->cancel && atomic_load(c->cancel); }
 
 /* Also true once the attempt is cancelled: every long loop checks it. */
@@ -2515,7 +2519,7 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
         stats->nuv = nu;
         stats->seam_edges = seams;
     }
-    if (stats && !bad) sq_param_distortion(P, stats);
+    if (stats && !bad && !distortion_later(c)) sq_param_distortion(P, stats);
     if (bad && !c->keep_flips)
         return sq_error_set(c->err, SQ_ERR_SOLVER,
                             "the interior map is not injective in floating point: %u of %u UV "
@@ -2791,7 +2795,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     stats->steiner = P->nv - P->nv_input;
     stats->nuv = P->nuv;
     stats->seam_edges = seams;
-    if (!bad) sq_param_distortion(P, stats);
+    if (!bad && !distortion_later(c)) sq_param_distortion(P, stats);
     if (bad && !c->keep_flips)
         st = sq_error_set(err, SQ_ERR_SOLVER,
                           "the interior map (overlay) is not injective in floating point: %u of %u UV "
