@@ -3,8 +3,9 @@
  * Both write through sq_atomic_file: on any failure the target is left as
  * it was and no temporary file remains. Arguments are validated before the
  * file is created, so a bad index never produces a file at all. Doubles
- * are written exactly: %.17g in OBJ (strtod reads back the same bits),
- * raw IEEE-754 bytes in PLY. */
+ * are written exactly: in OBJ the shortest decimal that strtod reads back
+ * as the same bits (sq_format_double), raw IEEE-754 bytes in PLY. */
+#include "sq_format_double.h"
 #include "sq_io.h"
 
 #include <errno.h>
@@ -61,6 +62,19 @@ static char *put_decimal(char *q, uint64_t v)
     return q;
 }
 
+/* One "tag x y [z]" line, each real exact (sq_format_double). */
+static void write_reals(FILE *fp, const char *tag, const double *x, int n)
+{
+    char line[8 + 3 * (SQ_FORMAT_DOUBLE_CAP + 1)], *q = line;
+    while (*tag) *q++ = *tag++;
+    for (int i = 0; i < n; i++) {
+        *q++ = ' ';
+        q += sq_format_double(x[i], q);
+    }
+    *q++ = '\n';
+    fwrite(line, 1, (size_t)(q - line), fp);
+}
+
 sq_status sq_write_obj(const char *path, uint32_t nv, const double *pos,
                        uint32_t nf, const uint32_t *face_off, const uint32_t *face_idx,
                        uint32_t nuv, const double *uv, const uint32_t *face_uv,
@@ -86,11 +100,8 @@ sq_status sq_write_obj(const char *path, uint32_t nv, const double *pos,
     errno = 0;
     FILE *fp = af.fp;
     fprintf(fp, "# written by seamquad: %" PRIu32 " vertices, %" PRIu32 " faces\n", nv, nf);
-    for (uint32_t v = 0; v < nv && !ferror(fp); v++)
-        fprintf(fp, "v %.17g %.17g %.17g\n", pos[3 * (size_t)v], pos[3 * (size_t)v + 1],
-                pos[3 * (size_t)v + 2]);
-    for (uint32_t t = 0; uv && t < nuv && !ferror(fp); t++)
-        fprintf(fp, "vt %.17g %.17g\n", uv[2 * (size_t)t], uv[2 * (size_t)t + 1]);
+    for (uint32_t v = 0; v < nv && !ferror(fp); v++) write_reals(fp, "v", pos + 3 * (size_t)v, 3);
+    for (uint32_t t = 0; uv && t < nuv && !ferror(fp); t++) write_reals(fp, "vt", uv + 2 * (size_t)t, 2);
     /* face lines: integers only, formatted by hand (fprintf per index was
      * a third of the time of writing a large mesh) */
     char line[64];

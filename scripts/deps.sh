@@ -7,6 +7,7 @@ SQ_DEBIAN_PACKAGES=(
   libsuitesparse-dev  # CHOLMOD and UMFPACK sparse solvers
   libopenmesh-dev     # cross-check of our mesh readers (tests only)
   libcmocka-dev       # unit tests
+  libdouble-conversion-dev # shortest exact decimals in OBJ output (core/adapter_double_conversion.cpp)
   libceres-dev        # nonlinear least squares for quad smoothing (stages/adapter_ceres.cpp)
   libosd-dev          # OpenSubdiv: Catmull-Clark patches and limit evaluation (stages/adapter_opensubdiv.cpp)
   libocct-data-exchange-dev       # OpenCASCADE STEP/IGES readers: CAD import check (tests only)
