@@ -297,12 +297,13 @@ static double tri_quality(const double q[3][2])
 /* whether collapsing inner vertex v into its neighbour w keeps a valid
  * triangulation: the link condition (v and w share exactly the two
  * vertices opposite their edge) and every triangle of v that stays turns
- * positively with w in v's place; and no worse shapes: the worst new
- * triangle (tri_quality) at least as good as the worst of v's star. Without
+ * positively with w in v's place; and no worse shapes: the worst of those
+ * triangles with w (tri_quality) at least as good as the worst of them
+ * with v (the two triangles on the edge v-w, which go, left out). Without
  * that last rule the collapses leave slivers along Omega's boundary,
  * which the overlay's disk map lays along the circle, across every
- * surface edge there (docs/param.md, "Tree qtri": cid/elephant 14.95
- * million faces built against 9.03 million with it) */
+ * surface edge there (docs/param.md, "Where the crossings are":
+ * cid/elephant 14.95 million faces built against 9.03 million with it) */
 static int collapse_ok(const uint32_t *tri, const uint8_t *alive, const vlist *vf, const double *p, uint32_t v,
                        uint32_t w)
 {
