@@ -2678,8 +2678,6 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     sq_param_tri_list bt = {0};
     sq_overlay X;
     sq_overlay_init(&X);
-    sq_mesh pm;
-    memset(&pm, 0, sizeof pm);
     sq_status st = sq_param_omega_triangulation(c->O, C, nbl, na, A->wb, oseq, A->bstart, A->buv, &nv, &buv, &bt, err);
     if (st) goto done;
     const uint32_t *btri = bt.t;
@@ -2773,18 +2771,36 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
             uint32_t o1 = X.tri[3 * (size_t)f + (i + 1) % 3];
             P->he_cut[3 * (size_t)f + i] = o < nbl && o1 == (o + 1) % nbl ? S->kind[A->mseq[o]] : 0;
         }
-    /* the seams from the output's own halfedge mesh (halfedge k = corner k;
-     * it also checks that the refined surface is a closed manifold) */
-    st = sq_param_mesh(P, "overlay", &pm, err);
-    if (st) goto done;
+    /* the seams from the output's twins (corner k's edge against the one
+     * across it; every edge with exactly two triangles, opposite: the
+     * refined surface is closed; sq_param_verify checks the whole mesh of
+     * the final map) */
+    P->he_twin = malloc(3 * (size_t)X.ntri * sizeof *P->he_twin);
+    if (!P->he_twin) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    int pr = sq_param_pair_twins(X.ntri, P->tri, P->he_twin);
+    if (pr == -1) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
     uint32_t seams = 0, bad = 0, first = SQ_NONE;
-    for (uint32_t k = 0; k < 3 * X.ntri; k++) {
-        uint32_t g = pm.he_twin[k];
-        P->he_seam[k] = P->tri_uv[k] != P->tri_uv[pm.he_next[g]] || P->tri_uv[pm.he_next[k]] != P->tri_uv[g];
+    for (uint32_t k = 0; k < 3 * X.ntri && !pr; k++) {
+        uint32_t g = P->he_twin[k];
+        if (g == SQ_NONE) {
+            pr = -3;
+            break;
+        }
+        P->he_seam[k] = P->tri_uv[k] != P->tri_uv[sq_param_corner_next(g)] ||
+                        P->tri_uv[sq_param_corner_next(k)] != P->tri_uv[g];
         if (P->he_seam[k] && k < g) seams++;
     }
-    /* the twins go with P: sq_param_simplify need not build them again */
-    P->he_twin = pm.he_twin, pm.he_twin = NULL;
+    if (pr) {
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the refined surface is not closed: an edge %s",
+                          pr == -3 ? "with one triangle" : "with more than two triangles, or two in one direction");
+        goto done;
+    }
     for (uint32_t f = 0; f < X.ntri; f++)
         if (sq_orient2d(P->uv + 2 * (size_t)P->tri_uv[3 * f], P->uv + 2 * (size_t)P->tri_uv[3 * f + 1],
                         P->uv + 2 * (size_t)P->tri_uv[3 * f + 2]) <= 0) {
@@ -2803,7 +2819,6 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
                           bad, P->nf, first);
 done:
     sq_overlay_free(&X);
-    sq_mesh_free(&pm);
     free(bt.t), free(btw), free(xy), free(p3), free(buv);
     return st;
 }

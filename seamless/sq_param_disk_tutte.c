@@ -6,43 +6,48 @@
 #include "sq_param_internal.h"
 #include "sq_sparse.h"
 
-/* sq_param_pair_twins sorts the halfedges by their vertex pair */
-typedef struct edge_key {
-    uint64_t key;
-    uint32_t h;
-} edge_key;
-
-static int edge_key_cmp(const void *x, const void *y)
-{
-    const edge_key *a = x, *b = y;
-    return a->key < b->key ? -1 : a->key > b->key ? 1 : (a->h > b->h) - (a->h < b->h);
-}
-
 int sq_param_pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin)
 {
+    /* halfedges bucketed by their smaller vertex (a counting sort), then
+     * paired within each bucket by the larger one */
     size_t nh = 3 * (size_t)nf;
-    edge_key *k = malloc(nh * sizeof *k);
-    if (!k) return -1;
+    uint32_t nv = 0;
+    for (size_t h = 0; h < nh; h++)
+        if (tri[h] >= nv) nv = tri[h] + 1;
+    uint32_t *start = calloc((size_t)nv + 1, sizeof *start), *bucket = malloc((nh ? nh : 1) * sizeof *bucket);
+    if (!start || !bucket) {
+        free(start), free(bucket);
+        return -1;
+    }
     for (size_t h = 0; h < nh; h++) {
         uint32_t a = tri[h], b = tri[sq_param_corner_next((uint32_t)h)];
-        k[h].key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
-        k[h].h = (uint32_t)h;
+        start[(a < b ? a : b) + 1]++;
         twin[h] = SQ_NONE;
     }
-    qsort(k, nh, sizeof *k, edge_key_cmp);
-    int r = 0;
-    for (size_t i = 0; i < nh && !r;) {
-        size_t j = i + 1;
-        while (j < nh && k[j].key == k[i].key) j++;
-        if (j - i > 2) r = -2;
-        if (j - i == 2) {
-            uint32_t h = k[i].h, g = k[i + 1].h;
-            if (tri[h] == tri[g]) r = -2;
-            twin[h] = g, twin[g] = h;
-        }
-        i = j;
+    for (uint32_t v = 0; v < nv; v++) start[v + 1] += start[v];
+    for (size_t h = 0; h < nh; h++) {
+        uint32_t a = tri[h], b = tri[sq_param_corner_next((uint32_t)h)];
+        bucket[start[a < b ? a : b]++] = (uint32_t)h;
     }
-    free(k);
+    /* start[v] is now the end of bucket v */
+    int r = 0;
+    for (uint32_t v = 0, begin = 0; v < nv; begin = start[v++])
+        for (uint32_t i = begin; i < start[v]; i++) {
+            uint32_t h = bucket[i], a = tri[h], b = tri[sq_param_corner_next(h)], hi = a < b ? b : a;
+            uint32_t same = 0, other = SQ_NONE;
+            for (uint32_t k = begin; k < start[v]; k++) {
+                uint32_t g = bucket[k];
+                if (g == h) continue;
+                uint32_t c = tri[g], d = tri[sq_param_corner_next(g)];
+                if ((c < d ? d : c) != hi) continue;
+                same++;
+                if (c == b && d == a) other = g;
+                else r = -2; /* two halfedges in one direction */
+            }
+            if (same > 1) r = -2; /* an edge with more than two halfedges */
+            if (same == 1 && other != SQ_NONE) twin[h] = other;
+        }
+    free(start), free(bucket);
     return r;
 }
 
