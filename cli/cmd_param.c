@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -102,7 +101,7 @@ static void help(FILE *f)
             "                      gives up (and the next seed is tried)\n"
             "  --max-crossings N   crossings of surface and domain edges the overlay may\n"
             "                      make (default: the Steiner budget; with --tree qtri\n"
-            "                      400 per input face, at most 4,500,000); each crossing\n"
+            "                      400 per input face, at most 10,000,000); each crossing\n"
             "                      costs about two faces before the simplification\n"
             "  --diagnose OUT.svg  when the map fails its orientation check: the last\n"
             "                      attempt is rebuilt keeping its flips, and the cells of\n"
@@ -618,8 +617,7 @@ int sq_cmd_param(int argc, char **argv)
     double t3 = sq_now();
     for (int i = 0; i < NOUT; i++) {
         if (!out[i].path) continue;
-        struct stat sb;
-        out[i].direct = stat(out[i].path, &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISDIR(sb.st_mode);
+        out[i].direct = sq_is_special_file(out[i].path);
         out[i].stage = out[i].direct ? strdup(out[i].path) : staging_path(out[i].path, i);
         if (!out[i].stage) {
             sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");

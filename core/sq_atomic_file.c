@@ -50,6 +50,12 @@ static mode_t current_umask(void)
     return m;
 }
 
+int sq_is_special_file(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISDIR(sb.st_mode);
+}
+
 sq_status sq_atomic_open(sq_atomic_file *af, const char *path, sq_error *err)
 {
     if (!af || !path || !*path)
@@ -73,8 +79,7 @@ sq_status sq_atomic_open(sq_atomic_file *af, const char *path, sq_error *err)
     }
     memcpy(af->path, path, len + 1);
     snprintf(af->tmp_path, tlen, "%.*s.%s%s", (int)dirlen, path, base, suffix);
-    struct stat tb;
-    if (stat(path, &tb) == 0 && !S_ISREG(tb.st_mode) && !S_ISDIR(tb.st_mode)) {
+    if (sq_is_special_file(path)) {
         free(af->tmp_path);
         af->tmp_path = NULL;
         FILE *fp = fopen(path, "wb");

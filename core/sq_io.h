@@ -50,6 +50,10 @@ sq_status sq_write_ply(const char *path, uint32_t nv, const double *pos,
                        uint32_t nf, const uint32_t *face_off, const uint32_t *face_idx,
                        sq_error *err);
 
+/* 1 if `path` exists and is neither a regular file nor a directory (a
+ * device such as /dev/null, a FIFO): written in place, never renamed over. */
+int sq_is_special_file(const char *path);
+
 /* Atomic output: open a temporary file next to `path`; commit renames it
  * over `path`; abort removes it. An existing target that is neither a
  * regular file nor a directory (/dev/null, a FIFO) is written directly

@@ -7,6 +7,21 @@
 #include "sq_cut_internal.h"
 #include "sq_mesh.h"
 
+/* The vertices off G's cut numbered 0, 1, ... in idx (m->nv entries;
+ * SQ_NONE on the cut); returns their count (sq_guide_surface_disk.c). */
+uint32_t sq_guide_inner_index(const sq_mesh *m, const sq_cut_graph *G, uint32_t *idx);
+
+/* G's boundary walk (G->side_he, counterclockwise around the cut disk):
+ * walk_of[h] = j for its j-th halfedge, SQ_NONE for the others (m->nh
+ * entries); len[j] the walk's arc length before it (nb entries). Returns
+ * the total length (sq_guide_surface_disk.c). */
+double sq_guide_walk_lengths(const sq_mesh *m, const sq_cut_graph *G, uint32_t *walk_of, double *len);
+
+/* The walk index of the sector that holds the origin of halfedge h on the
+ * cut: the first cut halfedge met turning clockwise from h (h itself if it
+ * is one); SQ_NONE if none is on the walk (sq_guide_surface_disk.c). */
+uint32_t sq_guide_sector_walk(const sq_mesh *m, const sq_cut_graph *G, const uint32_t *walk_of, uint32_t h);
+
 /* Whether the tree vertex x may end a path arriving from its neighbour u. */
 typedef int (*sq_guide_end_fn)(void *user, uint32_t x, uint32_t u);
 

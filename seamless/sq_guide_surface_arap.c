@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "sq_guide.h"
+#include "sq_guide_internal.h"
 #include "sq_sparse.h"
 
 sq_status sq_guide_surface_arap(const sq_mesh *m, const sq_cut_graph *G, uint32_t iters, double *v_xy,
@@ -36,15 +37,7 @@ sq_status sq_guide_surface_arap(const sq_mesh *m, const sq_cut_graph *G, uint32_
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    for (uint32_t h = 0; h < m->nh; h++) walk_of[h] = SQ_NONE;
-    for (uint32_t j = 0; j < nb; j++) walk_of[G->side_he[j]] = j;
-    for (uint32_t v = 0; v < m->nv; v++) idx[v] = 0;
-    for (uint32_t h = 0; h < m->nh; h++)
-        if (G->he_cut[h]) idx[m->he_vert[h]] = SQ_NONE;
-    uint32_t nin = 0;
-    for (uint32_t v = 0; v < m->nv; v++)
-        if (idx[v] != SQ_NONE) idx[v] = nin++;
-    const uint32_t N = nin + nb;
+    const uint32_t nin = sq_guide_inner_index(m, G, idx), N = nin + nb;
     u = malloc(2 * (size_t)N * sizeof *u), rhs = malloc(2 * (size_t)N * sizeof *rhs);
     if (!u || !rhs) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
@@ -54,17 +47,12 @@ sq_status sq_guide_surface_arap(const sq_mesh *m, const sq_cut_graph *G, uint32_
     for (uint32_t v = 0; v < m->nv; v++)
         if (idx[v] != SQ_NONE) u[idx[v]] = v_xy[2 * v], u[N + idx[v]] = v_xy[2 * v + 1];
     {
-        double total = 0, *len = malloc(((size_t)nb + 1) * sizeof *len);
+        double *len = malloc(((size_t)nb + 1) * sizeof *len);
         if (!len) {
             st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
             goto done;
         }
-        for (uint32_t j = 0; j < nb; j++) {
-            uint32_t h = G->side_he[j];
-            const double *p = m->pos + 3 * m->he_vert[h], *q = m->pos + 3 * m->he_vert[m->he_next[h]];
-            len[j] = total;
-            total += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
-        }
+        const double total = sq_guide_walk_lengths(m, G, walk_of, len);
         for (uint32_t j = 0; j < nb; j++) {
             double a = 2 * SQ_GUIDE_PI * len[j] / total;
             u[nin + j] = cos(a), u[N + nin + j] = sin(a);
@@ -81,13 +69,12 @@ sq_status sq_guide_surface_arap(const sq_mesh *m, const sq_cut_graph *G, uint32_
                 cid[3 * f + (uint32_t)i] = idx[v];
                 continue;
             }
-            uint32_t g = h, guard = 0;
-            while (!G->he_cut[g] && guard++ < m->nh) g = m->he_next[m->he_twin[g]];
-            if (walk_of[g] == SQ_NONE) {
+            uint32_t j = sq_guide_sector_walk(m, G, walk_of, h);
+            if (j == SQ_NONE) {
                 st = sq_error_set(err, SQ_ERR_INTERNAL, "guidance: vertex %u on the cut has no sector", v);
                 break;
             }
-            cid[3 * f + (uint32_t)i] = nin + walk_of[g];
+            cid[3 * f + (uint32_t)i] = nin + j;
         }
     }
     if (st) goto done;

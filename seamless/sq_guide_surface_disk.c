@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "sq_guide.h"
+#include "sq_guide_internal.h"
 #include "sq_mean_value.h"
 #include "sq_sparse.h"
 
@@ -13,6 +14,38 @@ static double vdist(const double *p, const double *q)
 {
     double x = p[0] - q[0], y = p[1] - q[1], z = p[2] - q[2];
     return sqrt(x * x + y * y + z * z);
+}
+
+uint32_t sq_guide_inner_index(const sq_mesh *m, const sq_cut_graph *G, uint32_t *idx)
+{
+    for (uint32_t v = 0; v < m->nv; v++) idx[v] = 0;
+    for (uint32_t h = 0; h < m->nh; h++)
+        if (G->he_cut[h]) idx[m->he_vert[h]] = SQ_NONE;
+    uint32_t n = 0;
+    for (uint32_t v = 0; v < m->nv; v++)
+        if (idx[v] != SQ_NONE) idx[v] = n++;
+    return n;
+}
+
+double sq_guide_walk_lengths(const sq_mesh *m, const sq_cut_graph *G, uint32_t *walk_of, double *len)
+{
+    const uint32_t nb = G->side_off[G->pattern.k];
+    for (uint32_t h = 0; h < m->nh; h++) walk_of[h] = SQ_NONE;
+    double total = 0;
+    for (uint32_t j = 0; j < nb; j++) {
+        uint32_t h = G->side_he[j];
+        walk_of[h] = j;
+        len[j] = total;
+        total += vdist(m->pos + 3 * m->he_vert[h], m->pos + 3 * m->he_vert[m->he_next[h]]);
+    }
+    return total;
+}
+
+uint32_t sq_guide_sector_walk(const sq_mesh *m, const sq_cut_graph *G, const uint32_t *walk_of, uint32_t h)
+{
+    uint32_t s = h, guard = 0;
+    while (!G->he_cut[s] && guard++ < m->nh) s = m->he_next[m->he_twin[s]];
+    return G->he_cut[s] ? walk_of[s] : SQ_NONE;
 }
 
 sq_status sq_guide_surface_disk(const sq_mesh *m, const sq_cut_graph *G, double *v_xy,
@@ -34,15 +67,8 @@ sq_status sq_guide_surface_disk(const sq_mesh *m, const sq_cut_graph *G, double 
         st = sq_error_set(err, SQ_ERR_ARGUMENT, "guidance: the cut graph has no boundary walk");
         goto done;
     }
-    for (uint32_t h = 0; h < m->nh; h++) walk_of[h] = SQ_NONE;
     /* the boundary walk by arc length, counterclockwise from angle 0 */
-    double total = 0;
-    for (uint32_t j = 0; j < nb; j++) {
-        uint32_t h = G->side_he[j];
-        walk_of[h] = j;
-        ang[j] = total;
-        total += vdist(m->pos + 3 * m->he_vert[h], m->pos + 3 * m->he_vert[m->he_next[h]]);
-    }
+    double total = sq_guide_walk_lengths(m, G, walk_of, ang);
     if (!(total > 0)) {
         st = sq_error_set(err, SQ_ERR_ARGUMENT, "guidance: the cut graph has zero length");
         goto done;
@@ -51,12 +77,7 @@ sq_status sq_guide_surface_disk(const sq_mesh *m, const sq_cut_graph *G, double 
     for (uint32_t s = 0; s < k; s++) corner_angle[s] = ang[G->side_off[s]];
 
     /* unknowns: vertices off the cut */
-    for (uint32_t v = 0; v < m->nv; v++) idx[v] = 0;
-    for (uint32_t h = 0; h < m->nh; h++)
-        if (G->he_cut[h]) idx[m->he_vert[h]] = SQ_NONE;
-    uint32_t n = 0;
-    for (uint32_t v = 0; v < m->nv; v++)
-        if (idx[v] != SQ_NONE) idx[v] = n++;
+    uint32_t n = sq_guide_inner_index(m, G, idx);
     size_t cap = 2 * (size_t)m->nh + 1, nnz = 0; /* two entries per halfedge */
     ri = malloc(cap * sizeof *ri), cj = malloc(cap * sizeof *cj), val = malloc(cap * sizeof *val);
     rhs = calloc(2 * (size_t)n + 2, sizeof *rhs), x = malloc((2 * (size_t)n + 2) * sizeof *x);
@@ -80,9 +101,7 @@ sq_status sq_guide_surface_disk(const sq_mesh *m, const sq_cut_graph *G, double 
             ri[nnz] = idx[v], cj[nnz] = idx[w], val[nnz++] = -wt;
             continue;
         }
-        uint32_t s = t, guard = 0;
-        while (!G->he_cut[s] && guard++ < m->nh) s = m->he_next[m->he_twin[s]];
-        uint32_t j = walk_of[s];
+        uint32_t j = sq_guide_sector_walk(m, G, walk_of, t);
         if (j == SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "guidance: vertex %u on the cut has no sector", w);
             goto done;

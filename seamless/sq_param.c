@@ -575,6 +575,18 @@ static sq_status guided_root(ctx *c)
     return st;
 }
 
+/* Tree qtri: SQ_ERR_SOLVER naming the first cone the surface tree could
+ * not join (att from sq_guide_surface_tree), SQ_OK if it joined them all */
+static sq_status qtri_all_joined(ctx *c, const uint32_t *att, uint32_t n)
+{
+    for (uint32_t j = 1; j < n; j++)
+        if (att[j] == SQ_NONE)
+            return sq_error_set(c->err, SQ_ERR_SOLVER,
+                                "tree qtri: the surface tree cannot join the cone at vertex %u (walled in by the cut)",
+                                c->step_vertex[j]);
+    return SQ_OK;
+}
+
 /* SQ_TREE_QTRI (seed 9.4 as the seed does it): the surface tree and its
  * root path, copied into Q triangulated with room made by edge splits
  * along the paths (sq_qtri_replicate: the same plane tree, always), and
@@ -599,11 +611,7 @@ static sq_status qtri_tree(ctx *c)
     if (st == SQ_OK) st = step_q_vertices(c, qv);
     if (st == SQ_OK)
         st = sq_guide_surface_tree(c->m, &c->G, n, c->step_vertex, att, frac, side, sv, c->s_tree_next, c->err);
-    for (uint32_t j = 1; st == SQ_OK && j < n; j++)
-        if (att[j] == SQ_NONE)
-            st = sq_error_set(c->err, SQ_ERR_SOLVER,
-                              "tree qtri: the surface tree cannot join the cone at vertex %u (walled in by the cut)",
-                              c->step_vertex[j]);
+    if (st == SQ_OK) st = qtri_all_joined(c, att, n);
     const uint32_t rs = root_step(c);
     sq_guide_root root = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
     if (st == SQ_OK)
@@ -660,11 +668,7 @@ static sq_status qtri_joinable(ctx *c, uint32_t n)
     uint8_t *side = malloc((size_t)n + 1);
     sq_status st = !att || !frac || !side ? sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory")
                    : sq_guide_surface_tree(c->m, &c->G, n, c->step_vertex, att, frac, side, NULL, NULL, c->err);
-    for (uint32_t j = 1; st == SQ_OK && j < n; j++)
-        if (att[j] == SQ_NONE)
-            st = sq_error_set(c->err, SQ_ERR_SOLVER,
-                              "tree qtri: the surface tree cannot join the cone at vertex %u (walled in by the cut)",
-                              c->step_vertex[j]);
+    if (st == SQ_OK) st = qtri_all_joined(c, att, n);
     free(att), free(frac), free(side);
     return st;
 }

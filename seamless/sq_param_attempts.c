@@ -180,8 +180,8 @@ static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq
     f.threads = 1;
     f.attempts = total < SQ_FALLBACK_ATTEMPTS ? total : SQ_FALLBACK_ATTEMPTS;
     /* the Steiner budget of the cuts stays (an attempt whose tree winds
-     * fails there, early); the overlay may cross more */
-    if (!f.max_crossings) f.max_crossings = sq_param_crossing_budget(&f, m->nv, m->nf);
+     * fails there, early); the overlay may cross more: tree qtri's own
+     * budget (sq_param_crossing_budget) where max_crossings is 0 */
     if (o->progress)
         o->progress(o->progress_ctx, "fallback: the surface tree copied into Q triangulated, overlay", 0.0);
     char first[sizeof err->msg];

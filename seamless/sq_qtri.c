@@ -66,7 +66,6 @@ static uint32_t s_he_in_quad(const sq_tsurf *S, uint32_t f, uint32_t a, uint32_t
     return SQ_NONE;
 }
 
-
 /* the two triangles of a quad along diagonal c0-c2 (0) or c1-c3 (1) */
 static const int quad_tri[2][2][3] = {{{0, 1, 2}, {0, 2, 3}}, {{1, 2, 3}, {1, 3, 0}}};
 

@@ -126,8 +126,9 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
 
 /* A coarser triangulation of an Omega of triangles (sq_qtri_omega): inner
  * vertices collapsed into a neighbour (nearest first) wherever the link
- * condition holds and every remaining triangle stays positively oriented
- * (exact predicate on the stored positions); the boundary, its labels and
+ * condition holds, every remaining triangle stays positively oriented
+ * (exact predicate on the stored positions) and their worst shape gets no
+ * worse (no slivers, which cost the overlay crossings); the boundary, its labels and
  * every position kept. Any triangulation of Omega serves the overlay
  * (seed 10: "any coarse tessellation ... is sufficient"). *removed: the
  * vertices removed. */

@@ -30,8 +30,6 @@
 
 static double urand(void) { return (double)(rng() >> 11) / 9007199254740992.0; }
 
-/* the cut surface of mpz/eight: boundary corners in order on the circle,
- * every vertex off the cut strictly inside, vertices on the cut NaN */
 /* a model with its cones and its cut graph (default options, seed 1) */
 static void load_cut(const char *name, sq_mesh *m, int32_t **val, uint8_t **cone, sq_cut_graph *G)
 {
@@ -49,6 +47,8 @@ static void load_cut(const char *name, sq_mesh *m, int32_t **val, uint8_t **cone
     assert_int_equal(sq_cut_graph_build(m, *cone, &opt, G, NULL, &err), SQ_OK);
 }
 
+/* the cut surface of mpz/eight: boundary corners in order on the circle,
+ * every vertex off the cut strictly inside, vertices on the cut NaN */
 static void test_surface_disk(void **state)
 {
     (void)state;
@@ -595,7 +595,8 @@ static void test_cone_tree_guided(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_surface_disk), cmocka_unit_test(test_surface_arap),       cmocka_unit_test(test_domain_disk),
+        cmocka_unit_test(test_surface_disk),       cmocka_unit_test(test_surface_arap),
+        cmocka_unit_test(test_domain_disk),
         cmocka_unit_test(test_match),              cmocka_unit_test(test_cone_order),
         cmocka_unit_test(test_layout_single_face), cmocka_unit_test(test_algorithm1_domains),
         cmocka_unit_test(test_surface_tree),       cmocka_unit_test(test_cone_tree_guided),

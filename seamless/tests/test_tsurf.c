@@ -167,7 +167,6 @@ static void check_since(const sq_tsurf *S, const snap *s, int mid)
     free(seen);
 }
 
-
 /* Regions: faces connected across uncut edges. Returns their number. */
 static uint32_t regions(const sq_tsurf *S, uint32_t *reg)
 {
