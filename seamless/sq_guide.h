@@ -19,6 +19,7 @@
 #ifndef SQ_GUIDE_H
 #define SQ_GUIDE_H
 
+#include <stdatomic.h>
 #include <stdint.h>
 
 #include "sq_cut_graph.h"
@@ -98,6 +99,9 @@ sq_status sq_guide_metapolygon_layout(const sq_metapolygon *P, const double *c, 
 typedef struct sq_guide_glue {
     const double *c;  /* 2 per step: singularity positions in construction order */
     uint32_t *chosen; /* optional, one per step (entry 0 stays as it was)        */
+    /* optional: once it holds non-zero, the chooser fails with
+     * SQ_ERR_SOLVER (another attempt passed: sq_param_attempts.c) */
+    const _Atomic int *cancel;
     /* the chooser's cache (zero-initialize; sq_guide_glue_free): above 5000
      * faces the layout is recomputed only when the metapolygon has grown by
      * a quarter, new vertices placed at their neighbours' average between */

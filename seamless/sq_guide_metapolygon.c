@@ -174,6 +174,7 @@ sq_status sq_guide_glue_chooser(void *user, const sq_metapolygon *P, uint32_t st
     sq_guide_glue *G = user;
     const double *c = G->c;
     *glue_he = SQ_NONE;
+    if (G->cancel && atomic_load(G->cancel)) return sq_error_set(err, SQ_ERR_SOLVER, "cancelled: an earlier attempt passed");
     if (G->cap < P->nv) {
         double *xy = realloc(G->xy, (2 * (size_t)P->nv + 2) * sizeof *xy);
         if (!xy) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");

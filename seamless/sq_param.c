@@ -198,6 +198,12 @@ static int distortion_later(const ctx *c) { return c->opt->simplify != SQ_SIMPLI
 
 static int cancelled(const ctx *c) { return c->cancel && atomic_load(c->cancel); }
 
+/* Between the long steps: SQ_ERR_SOLVER once the attempt is cancelled. */
+static sq_status stop_if_cancelled(const ctx *c)
+{
+    return cancelled(c) ? sq_error_set(c->err, SQ_ERR_SOLVER, "cancelled: an earlier attempt passed") : SQ_OK;
+}
+
 /* Also true once the attempt is cancelled: every long loop checks it. */
 static int over_budget(const ctx *c)
 {
@@ -619,11 +625,14 @@ static sq_status qtri_tree(ctx *c)
     if (st == SQ_OK && root.vertex == SQ_NONE)
         st = sq_error_set(c->err, SQ_ERR_SOLVER, "tree qtri: no root path from the cone at vertex %u",
                           c->step_vertex[rs]);
+    if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st == SQ_OK) st = sq_guide_metapolygon_layout(Q, c->step_xy, n, qv, xy, c->err);
+    if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st == SQ_OK) st = sq_qtri_build(c->D, xy, &T, c->err);
     if (st == SQ_OK)
         st = sq_qtri_replicate(&T, c->D, c->m, &c->G, n, c->step_vertex, qv, c->s_tree_next, sv, &root,
                                q_side_of_surface(c, root.side), c->err);
+    if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st == SQ_OK) st = sq_qtri_omega(&T, c->D, c->O, &c->qt_nseg, &qfrom, &qto, c->err);
     /* a coarse triangulation of Omega serves the overlay as well (seed 10)
      * with fewer crossings */
@@ -733,6 +742,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
         if (st == SQ_OK && genus >= 2 && c->opt->tree == SQ_TREE_QTRI) st = qtri_joinable(c, nc);
         if (st) goto done;
         c->glue.c = c->step_xy;
+        c->glue.cancel = c->cancel;
         bopt.chooser = sq_guide_glue_chooser;
         bopt.chooser_user = &c->glue;
         dopt.build = &bopt;
@@ -740,12 +750,14 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
         dopt.g1_split = nt;
     }
     st = sq_domain_build(genus, val, nc, &dopt, c->D, err);
+    if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     if (st_out) st_out->quads_unpadded = c->D->quads_unpadded, st_out->quads_added = c->D->quads_added;
     c->k = c->D->k;
     st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, err);
     if (st == SQ_OK && c->step_vertex && genus == 1) st = align_genus1(c, val, nc, &dopt);
     else if (st == SQ_OK && c->step_vertex) st = align_corners(c, val, nc, &dopt);
+    if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     double t2 = sq_now();
     progress(c, "omega", 0.2);
@@ -760,6 +772,7 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
         st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
     if (st == SQ_OK && !c->qtri) st = sq_omega_build(c->D, c->T, c->O, err);
     if (st == SQ_OK && c->s_tree_next && !c->tree_exact && !c->qtri) st = guided_root(c);
+    if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     double t3 = sq_now();
     if (st_out) {
@@ -2708,6 +2721,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     for (uint32_t i = 0; i < nv; i++)
         if (i < nbl || i >= na) p3[3 * (size_t)i] = buv[2 * i], p3[3 * (size_t)i + 1] = buv[2 * i + 1];
     st = sq_param_disk_tutte(nbt, btri, btw, na, nv - na, p3, xy, err);
+    if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     sq_overlay_mesh Am = {S->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
     progress(c, "overlay", 0.75);
@@ -2716,6 +2730,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
                           : c->qtri ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
                                                 : steiner_budget(c),
                           &X, err);
+    if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     /* the output: S's vertices, then B's interior vertices, then the crossings */
     uint32_t nout = S->nv + (nv - na) + X.nx;
@@ -2969,6 +2984,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     }
     for (uint32_t h = 0; h < c.O->cut.nh; h++) c.o2m[h] = SQ_NONE;
     st = boundary_map(&c);
+    if (st == SQ_OK) st = stop_if_cancelled(&c);
     if (st) goto done;
     double t2 = sq_now(), t_round = t2, t3 = t2, t4, t_overlay = 0; /* t_round: the last round's start */
     if (opt->interior == SQ_INTERIOR_OVERLAY || opt->interior == SQ_INTERIOR_OVERLAY_CHORDS || c.qtri) {

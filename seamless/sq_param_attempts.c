@@ -14,6 +14,7 @@
  * only sooner. Progress is reported for the lowest attempt still running. */
 #include <pthread.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -38,6 +39,8 @@ static const char *retry_message(int alternate, uint32_t a)
 
 typedef struct job {
     sq_param_options o;
+    const char *msg; /* progress line once it is the lowest still running */
+    int heavy;       /* one heavy attempt at a time (the fallback's)      */
     sq_param out;
     sq_param_stats stats;
     sq_error err;
@@ -51,10 +54,11 @@ typedef struct pool {
     const sq_mesh *m;
     const int32_t *valence;
     const sq_param_options *o; /* the caller's: progress goes there */
-    int alternate;
     uint32_t n;
     job *jobs;
     pthread_mutex_t mu;
+    pthread_cond_t cv; /* a job ended: a heavy one may start, or none */
+    int heavy_running;
     uint32_t next;   /* the next attempt to start                         */
     uint32_t ended;  /* the lowest attempt that ended without SQ_ERR_SOLVER */
     uint32_t lowest; /* the lowest attempt not done: it reports progress  */
@@ -72,53 +76,63 @@ static void job_progress(void *ctx, const char *stage, double f)
 static void *worker(void *arg)
 {
     pool *P = arg;
+    pthread_mutex_lock(&P->mu);
     for (;;) {
-        pthread_mutex_lock(&P->mu);
         uint32_t a = P->next;
-        if (a >= P->n || a > P->ended) {
-            pthread_mutex_unlock(&P->mu);
-            return NULL;
+        if (a >= P->n || a > P->ended) break;
+        job *J = &P->jobs[a];
+        if (J->heavy && P->heavy_running) {
+            pthread_cond_wait(&P->cv, &P->mu);
+            continue;
         }
         P->next++;
+        if (J->heavy) P->heavy_running = 1;
         pthread_mutex_unlock(&P->mu);
-        job *J = &P->jobs[a];
         J->st = sq_param_build_once(P->m, P->valence, &J->o, &J->cancel, &J->out, &J->stats, &J->err);
         pthread_mutex_lock(&P->mu);
         J->done = 1;
+        if (J->heavy) P->heavy_running = 0;
         if (J->st != SQ_ERR_SOLVER && a < P->ended) {
             P->ended = a;
             for (uint32_t b = a + 1; b < P->n; b++) atomic_store(&P->jobs[b].cancel, 1);
         }
         if (a == P->lowest) {
-            /* as one after another: a retry message for every attempt
-             * after the lowest done, up to the one that ended the run */
+            /* as one after another: the line of every attempt after the
+             * lowest done, up to the one that ended the run */
             uint32_t from = P->lowest + 1;
             while (P->lowest < P->n && P->jobs[P->lowest].done) P->lowest++;
             for (uint32_t k = from; k <= P->lowest && k < P->n && k <= P->ended && P->o->progress; k++)
-                P->o->progress(P->o->progress_ctx, retry_message(P->alternate, k), 0.0);
+                if (P->jobs[k].msg) P->o->progress(P->o->progress_ctx, P->jobs[k].msg, 0.0);
         }
-        pthread_mutex_unlock(&P->mu);
+        pthread_cond_broadcast(&P->cv);
     }
+    pthread_mutex_unlock(&P->mu);
+    return NULL;
 }
 
-static sq_status run_attempts(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
-                              uint32_t n, int alternate, uint32_t threads, sq_param *out,
-                              sq_param_stats *stats, sq_error *err)
+/* Runs the attempts jobs[0, n) (their options, messages and heaviness
+ * set) on `threads` threads in order, as described at the top, and
+ * returns the index of the result: the lowest that ended without
+ * SQ_ERR_SOLVER, else the last. */
+static sq_status run_jobs(const sq_mesh *m, const int32_t *valence, const sq_param_options *o, job *jobs,
+                          uint32_t n, uint32_t threads, uint32_t *pick, sq_error *err)
 {
     pool P;
     memset(&P, 0, sizeof P);
-    P.m = m, P.valence = valence, P.o = o, P.alternate = alternate, P.n = n;
+    P.m = m, P.valence = valence, P.o = o, P.n = n, P.jobs = jobs;
     P.ended = n, P.lowest = 0;
-    P.jobs = calloc(n, sizeof *P.jobs);
     pthread_t *th = calloc(threads, sizeof *th);
-    if (!P.jobs || !th || pthread_mutex_init(&P.mu, NULL) != 0) {
-        free(P.jobs);
+    if (!th || pthread_mutex_init(&P.mu, NULL) != 0) {
+        free(th);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (attempt threads)");
+    }
+    if (pthread_cond_init(&P.cv, NULL) != 0) {
+        pthread_mutex_destroy(&P.mu);
         free(th);
         return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (attempt threads)");
     }
     for (uint32_t a = 0; a < n; a++) {
-        job *J = &P.jobs[a];
-        J->o = attempt_options(o, a, alternate);
+        job *J = &jobs[a];
         J->o.progress = job_progress, J->o.progress_ctx = J;
         J->pool = &P, J->st = SQ_ERR_SOLVER;
         atomic_init(&J->cancel, 0);
@@ -130,20 +144,11 @@ static sq_status run_attempts(const sq_mesh *m, const int32_t *valence, const sq
         if (pthread_create(&th[started], NULL, worker, &P) == 0) started++;
     worker(&P);
     for (uint32_t t = 0; t < started; t++) pthread_join(th[t], NULL);
+    pthread_cond_destroy(&P.cv);
     pthread_mutex_destroy(&P.mu);
     free(th);
-    uint32_t pick = P.ended < n ? P.ended : n - 1;
-    job *J = &P.jobs[pick];
-    *out = J->out;
-    memset(&J->out, 0, sizeof J->out);
-    *stats = J->stats;
-    stats->attempts = pick + 1;
-    stats->seed_used = J->o.seed;
-    if (err) *err = J->err;
-    sq_status st = J->st;
-    for (uint32_t a = 0; a < n; a++) sq_param_free(&P.jobs[a].out);
-    free(P.jobs);
-    return st;
+    *pick = P.ended < n ? P.ended : n - 1;
+    return SQ_OK;
 }
 
 uint64_t sq_param_crossing_budget(const sq_param_options *o, uint32_t nv, uint32_t nf)
@@ -162,47 +167,21 @@ static int uses_fallback(const sq_param_options *o, int64_t genus)
            o->tree == SQ_TREE_SURFACE && o->interior == SQ_INTERIOR_AUTO && !o->allow_flips;
 }
 
-/* After the first n attempts with the default choices failed (err says
- * why; total: the attempts asked for, 4 at most here, *tried: n and the
- * fallback's): the surface tree copied into Q triangulated and the overlay
- * (SQ_TREE_QTRI; for genus 1 with the guided domain, seed 9.2 per piece),
- * whose map the cells could not give: cid/elephant and mpz/elk, whose
- * surface trees Q's quad grid cannot follow (docs/param.md). One attempt
- * at a time: each may hold gigabytes. */
-static sq_status run_fallback(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
-                              uint32_t n, uint32_t total, uint32_t *tried, sq_param *out, sq_param_stats *stats,
-                              sq_error *err)
+/* The options of the fallback (SQ_FALLBACK_AUTO): the surface tree copied
+ * into Q triangulated and the overlay (SQ_TREE_QTRI; for genus 1 with the
+ * guided domain, seed 9.2 per piece), whose map the cells could not give:
+ * cid/elephant and mpz/elk, whose surface trees Q's quad grid cannot
+ * follow (docs/param.md). The Steiner budget of the cuts stays (an
+ * attempt whose tree winds fails there, early); the overlay may cross
+ * more: tree qtri's own budget (sq_param_crossing_budget) where
+ * max_crossings is 0. */
+static sq_param_options fallback_options(const sq_mesh *m, const sq_param_options *o)
 {
-    const int g1 = sq_mesh_genus(m) == 1;
     sq_param_options f = *o;
     f.tree = SQ_TREE_QTRI;
-    if (g1) f.guidance = SQ_GUIDE_ON;
+    if (sq_mesh_genus(m) == 1) f.guidance = SQ_GUIDE_ON;
     f.threads = 1;
-    f.attempts = total < SQ_FALLBACK_ATTEMPTS ? total : SQ_FALLBACK_ATTEMPTS;
-    /* the Steiner budget of the cuts stays (an attempt whose tree winds
-     * fails there, early); the overlay may cross more: tree qtri's own
-     * budget (sq_param_crossing_budget) where max_crossings is 0 */
-    if (o->progress)
-        o->progress(o->progress_ctx, "fallback: the surface tree copied into Q triangulated, overlay", 0.0);
-    char first[sizeof err->msg];
-    memcpy(first, err->msg, sizeof first);
-    sq_param_stats fs;
-    memset(&fs, 0, sizeof fs);
-    sq_status st = run_attempts(m, valence, &f, f.attempts, 0, 1, out, &fs, err);
-    *tried = n + f.attempts;
-    if (st == SQ_OK) {
-        fs.attempts += n;
-        fs.fallback = 1;
-        *stats = fs;
-        return SQ_OK;
-    }
-    if (st != SQ_ERR_SOLVER) return st;
-    char second[sizeof err->msg];
-    memcpy(second, err->msg, sizeof second);
-    return sq_error_set(err, SQ_ERR_SOLVER,
-                        "%s; the fallback (%sthe surface tree copied into Q triangulated, overlay; %u attempts) "
-                        "failed too: %s",
-                        first, g1 ? "guided domain, " : "", f.attempts, second);
+    return f;
 }
 
 sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
@@ -226,37 +205,73 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     /* SQ_TREE_ALTERNATE with guidance (genus >= 2, or genus 1 with
      * SQ_GUIDE_ON): each seed twice, the surface tree, then Q's tree */
     const int alternate = sq_param_uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
-    uint32_t threads = o.threads ? o.threads : 1;
-    if (threads > n) threads = n;
-    /* with the fallback: the default choices' first SQ_FALLBACK_AFTER
-     * attempts (one round of two threads), the fallback, then the default
-     * choices' other attempts. Where the first two fail, the later ones
-     * rarely pass (block at the 15th, fertility_tri at the 7th, femur at
-     * the 3rd; elephant at none of 16, which cost it 36 to 54 s before the
+    /* with the fallback, in this order: the default choices' first
+     * SQ_FALLBACK_AFTER attempts, the fallback's (at most
+     * SQ_FALLBACK_ATTEMPTS, from the same seed), then the default choices'
+     * other attempts. Where the first two fail, the later ones rarely pass
+     * (block at the 15th, fertility_tri at the 7th, femur at the 3rd;
+     * elephant at none of 16, which cost it 36 to 54 s before the
      * fallback), and the fallback's maps are far less distorted (mean
-     * conformal ratio 129 against 3.7e8 on block; docs/param.md) */
+     * conformal ratio 129 against 3.7e8 on block; docs/param.md). One
+     * ordered list on the threads: the fallback's first attempt starts as
+     * soon as a thread is free (elephant: while its first default attempt
+     * still runs), the result is still the lowest that passes. The
+     * fallback's attempts are heavy (each may hold gigabytes): one at a
+     * time. */
     const int fb = uses_fallback(&o, sq_mesh_genus(m));
     const uint32_t first = fb && n > SQ_FALLBACK_AFTER ? SQ_FALLBACK_AFTER : n;
-    st = run_attempts(m, valence, &o, first, alternate, threads < first ? threads : first, out, stats, err);
-    if (st == SQ_ERR_SOLVER && fb) {
-        uint32_t tried = first;
-        st = run_fallback(m, valence, &o, first, n, &tried, out, stats, err);
-        if (st == SQ_ERR_SOLVER && first < n) {
-            char before[sizeof err->msg];
-            memcpy(before, err->msg, sizeof before);
-            sq_param_options rest = o;
-            rest.seed = o.seed + (alternate ? first / 2 : first);
-            st = run_attempts(m, valence, &rest, n - first, alternate, threads < n - first ? threads : n - first,
-                              out, stats, err);
-            if (st == SQ_OK) stats->attempts += tried;
-            else if (st == SQ_ERR_SOLVER) {
-                char last[sizeof err->msg];
-                memcpy(last, err->msg, sizeof last);
-                st = sq_error_set(err, SQ_ERR_SOLVER, "%s; then attempts %u to %u with the default choices: %s",
-                                  before, tried + 1, tried + n - first, last);
-            }
+    const uint32_t nfb = fb ? (n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS) : 0;
+    const uint32_t total = n + nfb;
+    job *jobs = calloc(total, sizeof *jobs);
+    if (!jobs) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (attempts)");
+    const sq_param_options f = fallback_options(m, &o);
+    sq_param_options rest = o;
+    rest.seed = o.seed + (alternate ? first / 2 : first);
+    for (uint32_t a = 0; a < total; a++) {
+        job *J = &jobs[a];
+        if (a < first) {
+            J->o = attempt_options(&o, a, alternate);
+            J->msg = a ? retry_message(alternate, a) : NULL;
+        } else if (a < first + nfb) {
+            J->o = attempt_options(&f, a - first, 0);
+            J->heavy = 1;
+            J->msg = a == first ? "fallback: the surface tree copied into Q triangulated, overlay"
+                                : retry_message(0, a - first);
+        } else {
+            J->o = attempt_options(&rest, a - first - nfb, alternate);
+            J->msg = retry_message(alternate, a - first - nfb);
         }
     }
+    uint32_t threads = o.threads ? o.threads : 1, pick = 0;
+    if (threads > total) threads = total;
+    st = run_jobs(m, valence, &o, jobs, total, threads, &pick, err);
+    if (st == SQ_OK) {
+        job *J = &jobs[pick];
+        *out = J->out;
+        memset(&J->out, 0, sizeof J->out);
+        *stats = J->stats;
+        stats->attempts = pick + 1;
+        stats->seed_used = J->o.seed;
+        stats->fallback = pick >= first && pick < first + nfb;
+        *err = J->err;
+        st = J->st;
+        if (st == SQ_ERR_SOLVER && nfb) {
+            /* every attempt failed: why the last of each group did */
+            const int g1 = sq_mesh_genus(m) == 1;
+            char msg[3 * sizeof err->msg];
+            int len = snprintf(msg, sizeof msg,
+                               "%s; the fallback (%sthe surface tree copied into Q triangulated, overlay; %u "
+                               "attempts) failed too: %s",
+                               jobs[first - 1].err.msg, g1 ? "guided domain, " : "", nfb,
+                               jobs[first + nfb - 1].err.msg);
+            if (total > first + nfb && len > 0 && (size_t)len < sizeof msg)
+                snprintf(msg + len, sizeof msg - (size_t)len, "; then attempts %u to %u with the default choices: %s",
+                         first + nfb + 1, total, jobs[total - 1].err.msg);
+            sq_error_set(err, SQ_ERR_SOLVER, "%s", msg);
+        }
+    }
+    for (uint32_t a = 0; a < total; a++) sq_param_free(&jobs[a].out);
+    free(jobs);
     if (st == SQ_OK && o.simplify != SQ_SIMPLIFY_OFF && !o.allow_flips) {
         double t = sq_now();
         if (o.progress) o.progress(o.progress_ctx, "simplify", 0.95);
