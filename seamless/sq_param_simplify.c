@@ -60,6 +60,7 @@ typedef struct simp {
     uint32_t *mark;    /* nv: stamps for the link condition              */
     uint32_t *queue;   /* nv: vertices to try (again), a ring buffer     */
     uint32_t qhead, qlen;
+    uint32_t nlink; /* vertices with F_LINK: none (elephant), no 2-ring scan */
     int link_failed;
     uint32_t stamp;
 } simp;
@@ -202,7 +203,8 @@ static int try_collapse(simp *s, uint32_t v, const uint32_t *cs, uint32_t d, uin
     s->vc[w] = cs[jp];
     s->vc[P->tri[t1]] = t1;
     s->vc[P->tri[t4]] = t4;
-    s->flag[v] &= (uint8_t)~F_FREE;
+    if (s->flag[v] & F_LINK) s->nlink--;
+    s->flag[v] &= (uint8_t)~(F_FREE | F_LINK);
     s->vc[v] = SQ_NONE;
     /* to be tried again: every vertex whose collapses this may change: w
      * and its new ring (their stars changed), and the neighbours of those
@@ -213,11 +215,13 @@ static int try_collapse(simp *s, uint32_t v, const uint32_t *cs, uint32_t d, uin
     do {
         uint32_t u = P->tri[sq_param_corner_next(c)], e0 = s->vc[u], e = e0;
         enqueue(s, u);
-        do {
-            uint32_t x = P->tri[sq_param_corner_next(e)];
-            if (s->flag[x] & F_LINK) enqueue(s, x);
-            e = s->tw[sq_param_corner_prev(e)];
-        } while (e != e0);
+        if (s->nlink) {
+            do {
+                uint32_t x = P->tri[sq_param_corner_next(e)];
+                if (s->flag[x] & F_LINK) enqueue(s, x);
+                e = s->tw[sq_param_corner_prev(e)];
+            } while (e != e0);
+        }
         c = s->tw[sq_param_corner_prev(c)];
     } while (c != c0);
     return 1;
@@ -265,7 +269,11 @@ static uint32_t simplify_queue(simp *s)
         uint32_t k = 0;
         while (k < d && !try_collapse(s, v, cs, d, order[k], f1 != SQ_NONE, key_old)) k++;
         if (k < d) done++;
-        else s->flag[v] = (uint8_t)(s->link_failed ? s->flag[v] | F_LINK : s->flag[v] & ~F_LINK);
+        else {
+            uint8_t f = (uint8_t)(s->link_failed ? s->flag[v] | F_LINK : s->flag[v] & ~F_LINK);
+            s->nlink += (uint32_t)((f & F_LINK) != 0) - (uint32_t)((s->flag[v] & F_LINK) != 0);
+            s->flag[v] = f;
+        }
     }
     return done;
 }
