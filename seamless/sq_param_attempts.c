@@ -11,7 +11,10 @@
  * state; the sparse solvers keep theirs per call); once attempt a ends
  * without SQ_ERR_SOLVER, the attempts after it are cancelled and the ones
  * before it are awaited, so the result is the same as one after another,
- * only sooner. Progress is reported for the lowest attempt still running. */
+ * only sooner. Progress is reported for the lowest attempt still running.
+ * With the fallback, its attempts sit in the same list between the default
+ * choices' first two and their others (sq_param_build), so its first one
+ * starts as soon as a thread is free; they are heavy: one at a time. */
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>

@@ -245,6 +245,56 @@ static void test_threads(void **state)
     unload(&M);
 }
 
+/* The attempts as one ordered list (sq_param_attempts.c): mpz/eight with
+ * a Steiner budget of 50 fails its two default attempts and passes at
+ * the fallback's first (attempt 3, seed 1), which with two threads starts
+ * beside a default attempt; with 1 and 2 threads the same map to the bit.
+ * With budgets of 1 Steiner vertex and 1 crossing every attempt fails
+ * (two default, three of the fallback, one default again): the same
+ * message with 1 and 2 threads, naming each group. */
+static void test_fallback_threads(void **state)
+{
+    (void)state;
+    model M;
+    load(&M, "mpz/eight");
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.attempts = 16, opt.max_steiner = 50;
+    sq_param P1, P;
+    sq_param_init(&P1);
+    sq_param_stats s1, st;
+    sq_error err = {0};
+    opt.threads = 1;
+    if (sq_param_build(&M.m, M.val, &opt, &P1, &s1, &err)) fail_msg("eight, 1 thread: %s", err.msg);
+    assert_true(s1.attempts == 3 && s1.seed_used == 1 && s1.fallback && s1.tree_qtri);
+    opt.threads = 2;
+    sq_param_init(&P);
+    if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("eight, 2 threads: %s", err.msg);
+    assert_true(st.attempts == 3 && st.seed_used == 1 && st.fallback && st.tree_qtri);
+    assert_true(P.nv == P1.nv && P.nf == P1.nf && P.nuv == P1.nuv);
+    assert_memory_equal(P.pos, P1.pos, 3 * (size_t)P.nv * sizeof *P.pos);
+    assert_memory_equal(P.tri, P1.tri, 3 * (size_t)P.nf * sizeof *P.tri);
+    assert_memory_equal(P.uv, P1.uv, 2 * (size_t)P.nuv * sizeof *P.uv);
+    assert_memory_equal(P.tri_uv, P1.tri_uv, 3 * (size_t)P.nf * sizeof *P.tri_uv);
+    assert_referee_passes(&M, &P, "eight (fallback, 2 threads)");
+    sq_param_free(&P);
+    sq_param_free(&P1);
+    opt.attempts = 3, opt.max_steiner = 1, opt.max_crossings = 1;
+    char msg1[sizeof err.msg];
+    opt.threads = 1;
+    assert_int_equal(sq_param_build(&M.m, M.val, &opt, &P, &s1, &err), SQ_ERR_SOLVER);
+    memcpy(msg1, err.msg, sizeof msg1);
+    opt.threads = 2;
+    assert_int_equal(sq_param_build(&M.m, M.val, &opt, &P, &st, &err), SQ_ERR_SOLVER);
+    assert_string_equal(err.msg, msg1);
+    assert_non_null(strstr(err.msg, "the fallback ("));
+    assert_non_null(strstr(err.msg, "3 attempts) failed too"));
+    assert_non_null(strstr(err.msg, "then attempts 6 to 6 with the default choices"));
+    assert_true(st.attempts == 6 && s1.attempts == 6);
+    assert_null(P.pos);
+    unload(&M);
+}
+
 static const char *models[] = {"mpz/block",   "mpz/cup",        "mpz/elk",      "mpz/fandisk",
                                "mpz/femur",   "mpz/fertility_tri", "mpz/genus3", "mpz/helmet",
                                "mpz/holes3",  "mpz/homer",      "mpz/knot1",    "mpz/rocker_arm",
@@ -426,6 +476,7 @@ int main(void)
         cmocka_unit_test(test_eight_passes),
         cmocka_unit_test(test_cup_guided),
         cmocka_unit_test(test_threads),
+        cmocka_unit_test(test_fallback_threads),
         cmocka_unit_test(test_all_models_compatible),
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_bad_cells),
