@@ -287,6 +287,12 @@ sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err);
  * *removed (may be NULL) receives the vertices removed. */
 sq_status sq_param_simplify(const sq_mesh *m, sq_param *P, uint32_t *removed, sq_error *err);
 
+/* The same in `threads` threads (2 used at most: the input's faces in two
+ * halves, each simplified on its own, then the vertices between them);
+ * the result does not depend on threads. */
+sq_status sq_param_simplify_threads(const sq_mesh *m, sq_param *P, uint32_t threads, uint32_t *removed,
+                                    sq_error *err);
+
 /* Writes P as OBJ (v, vt, f a/ta b/tb c/tc), atomically (no partial file on
  * error). */
 sq_status sq_param_write_obj(const char *path, const sq_param *P, sq_error *err);

@@ -279,7 +279,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
         double t = sq_now();
         if (o.progress) o.progress(o.progress_ctx, "simplify", 0.95);
         stats->faces_unsimplified = out->nf;
-        st = sq_param_simplify(m, out, &stats->simplified, err);
+        st = sq_param_simplify_threads(m, out, o.threads ? o.threads : 1, &stats->simplified, err);
         if (st) sq_param_free(out);
         else {
             stats->verts_out = out->nv, stats->faces_out = out->nf;

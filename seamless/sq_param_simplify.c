@@ -31,6 +31,7 @@
  *
  * The library never prints or exits. */
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -44,25 +45,35 @@
 #define F_FREE 1  /* may be removed                            */
 #define F_DIRTY 2 /* in the queue                              */
 #define F_LINK 4  /* its last try failed by the link only      */
+#define F_DEFER 8 /* left to the last pass (near the halves' border) */
+/* simp.grp: the half (0, 1) of the input faces around a vertex, or both */
+#define G_BORDER 2
+#define G_ALL 3 /* simp.group of the last pass: no restriction */
 #define TWO_PI 6.283185307179586
 /* new triangles must be this far from degenerate against their input
  * face's plane: sin(angle at w) in the face, relative */
 #define SIN_MARGIN 1e-7
 
+/* One pass over one half (or, last, over everything): the arrays up to
+ * grp are shared by the passes; a pass of half g touches only vertices
+ * of grp g and their triangles (see sq_param_simplify_threads). */
 typedef struct simp {
     sq_param *P;
     const double *nrm; /* 3 per input face: unit normal                 */
     uint32_t *tw;      /* 3 nf: the twin of halfedge (corner) c          */
     uint32_t *vc;      /* nv: a corner of the vertex in a live face      */
-    uint8_t *flag;     /* nv: F_FREE | F_DIRTY | F_LINK (one byte: the  */
-                       /* queue's updates read all three together)      */
+    uint8_t *flag;     /* nv: F_FREE | F_DIRTY | F_LINK | F_DEFER (one  */
+                       /* byte: the queue's updates read them together) */
     uint8_t *fdead;    /* nf                                             */
-    uint32_t *mark;    /* nv: stamps for the link condition              */
-    uint32_t *queue;   /* nv: vertices to try (again), a ring buffer     */
+    const uint8_t *grp; /* nv: 0, 1 or G_BORDER                          */
+    uint8_t group;     /* this pass's half, or G_ALL                     */
+    uint32_t *mark;    /* nv: stamps for the link condition (own)        */
+    uint32_t *queue;   /* nv: vertices to try (again), a ring buffer (own) */
     uint32_t qhead, qlen;
     uint32_t nlink; /* vertices with F_LINK: none (elephant), no 2-ring scan */
     int link_failed;
-    uint32_t stamp;
+    int blocked;    /* a try met a vertex of the other half or the border */
+    uint32_t stamp, done;
 } simp;
 
 static const double *POS(const simp *s, uint32_t v) { return s->P->pos + 3 * (size_t)v; }
@@ -121,6 +132,7 @@ static uint32_t ring_of(const simp *s, uint32_t v, uint32_t *cs)
 
 static void enqueue(simp *s, uint32_t v)
 {
+    if (s->group != G_ALL && s->grp[v] != s->group) return; /* not ours to touch */
     if ((s->flag[v] & (F_FREE | F_DIRTY)) != F_FREE) return;
     s->flag[v] |= F_DIRTY;
     s->queue[(s->qhead + s->qlen++) % s->P->nv] = v;
@@ -174,13 +186,20 @@ static int try_collapse(simp *s, uint32_t v, const uint32_t *cs, uint32_t d, uin
     if (!(uv_sum < TWO_PI * (1 - 1e-9)) || !(side_sum[0] < TWO_PI * (1 - 1e-9)) ||
         !(side_sum[1] < TWO_PI * (1 - 1e-9)))
         return 0;
-    /* the link condition: the neighbours of w among v's are r_{j-1}, r_{j+1} */
+    /* the link condition: the neighbours of w among v's are r_{j-1}, r_{j+1};
+     * in a half's pass, w's neighbours must be that half's too (w is: it
+     * is v's neighbour) */
     s->stamp++;
     for (uint32_t i = 0; i < d; i++) s->mark[P->tri[sq_param_corner_next(cs[i])]] = s->stamp;
     {
         uint32_t c0 = s->vc[w], c = c0, shared = 0, n = 0;
         do {
-            if (s->mark[P->tri[sq_param_corner_next(c)]] == s->stamp) shared++;
+            uint32_t x = P->tri[sq_param_corner_next(c)];
+            if (s->group != G_ALL && s->grp[x] != s->group) {
+                s->blocked = 1;
+                return 0;
+            }
+            if (s->mark[x] == s->stamp) shared++;
             c = s->tw[sq_param_corner_prev(c)];
         } while (c != c0 && ++n < 100000);
         if (shared != 2) {
@@ -241,6 +260,14 @@ static uint32_t simplify_queue(simp *s)
         if (!(s->flag[v] & F_FREE)) continue;
         uint32_t d = ring_of(s, v, cs);
         if (d < 3) continue;
+        if (s->group != G_ALL) { /* a half's pass: v's neighbours in it too */
+            uint32_t i = 0;
+            while (i < d && s->grp[P->tri[sq_param_corner_next(cs[i])]] == s->group) i++;
+            if (i < d) {
+                s->flag[v] |= F_DEFER;
+                continue;
+            }
+        }
         /* v's input faces: one (inside) or two (on their edge) */
         uint32_t f0 = P->tri_in[cs[0] / 3], f1 = SQ_NONE;
         int bad = 0;
@@ -265,10 +292,11 @@ static uint32_t simplify_queue(simp *s)
             while (m > 0 && len[order[m - 1]] > len[i]) order[m] = order[m - 1], m--;
             order[m] = i;
         }
-        s->link_failed = 0;
+        s->link_failed = s->blocked = 0;
         uint32_t k = 0;
         while (k < d && !try_collapse(s, v, cs, d, order[k], f1 != SQ_NONE, key_old)) k++;
         if (k < d) done++;
+        else if (s->blocked) s->flag[v] |= F_DEFER;
         else {
             uint8_t f = (uint8_t)(s->link_failed ? s->flag[v] | F_LINK : s->flag[v] & ~F_LINK);
             s->nlink += (uint32_t)((f & F_LINK) != 0) - (uint32_t)((s->flag[v] & F_LINK) != 0);
@@ -317,7 +345,71 @@ static sq_status compact(simp *s, sq_error *err)
     return SQ_OK;
 }
 
+typedef struct face_key {
+    double k;
+    uint32_t f;
+} face_key;
+
+static int cmp_face_key(const void *x, const void *y)
+{
+    const face_key *a = x, *b = y;
+    if (a->k != b->k) return a->k < b->k ? -1 : 1;
+    return (a->f > b->f) - (a->f < b->f);
+}
+
+/* The two halves of the input faces: split at the median, weighted by
+ * their triangles in P, of the centroids along the input's longest box
+ * axis (so that the halves carry about the same work and meet along a
+ * short border). fgroup: nf of m. */
+static sq_status split_faces(const sq_mesh *m, const sq_param *P, uint8_t *fgroup, sq_error *err)
+{
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (uint32_t v = 0; v < m->nv; v++)
+        for (int d = 0; d < 3; d++) {
+            double x = m->pos[3 * (size_t)v + d];
+            if (x < lo[d]) lo[d] = x;
+            if (x > hi[d]) hi[d] = x;
+        }
+    int ax = 0;
+    for (int d = 1; d < 3; d++)
+        if (hi[d] - lo[d] > hi[ax] - lo[ax]) ax = d;
+    face_key *pk = malloc(((size_t)m->nf + 1) * sizeof *pk);
+    uint32_t *weight = calloc((size_t)m->nf + 1, sizeof *weight);
+    if (!pk || !weight) {
+        free(pk), free(weight);
+        return sq_error_set(err, SQ_ERR_NOMEM, "simplify: out of memory");
+    }
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h = m->f_he[f];
+        pk[f].k = m->pos[3 * (size_t)m->he_vert[h] + ax] + m->pos[3 * (size_t)m->he_vert[m->he_next[h]] + ax] +
+                  m->pos[3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]] + ax];
+        pk[f].f = f;
+    }
+    for (uint32_t f = 0; f < P->nf; f++) weight[P->tri_in[f]]++;
+    qsort(pk, m->nf, sizeof *pk, cmp_face_key);
+    uint64_t run = 0;
+    for (uint32_t i = 0; i < m->nf; i++) {
+        fgroup[pk[i].f] = run * 2 < (uint64_t)P->nf ? 0 : 1;
+        run += weight[pk[i].f];
+    }
+    free(pk), free(weight);
+    return SQ_OK;
+}
+
+static void *run_half(void *arg)
+{
+    simp *s = arg;
+    s->done = simplify_queue(s);
+    return NULL;
+}
+
 sq_status sq_param_simplify(const sq_mesh *m, sq_param *P, uint32_t *removed, sq_error *err)
+{
+    return sq_param_simplify_threads(m, P, 1, removed, err);
+}
+
+sq_status sq_param_simplify_threads(const sq_mesh *m, sq_param *P, uint32_t threads, uint32_t *removed,
+                                    sq_error *err)
 {
     if (removed) *removed = 0;
     if (!P->tri_in) return sq_error_set(err, SQ_ERR_ARGUMENT, "simplify: the map has no input faces (tri_in)");
@@ -345,8 +437,11 @@ sq_status sq_param_simplify(const sq_mesh *m, sq_param *P, uint32_t *removed, sq
     s.fdead = calloc(P->nf, 1);
     s.mark = calloc(P->nv, sizeof *s.mark);
     s.queue = malloc((size_t)P->nv * sizeof *s.queue);
-    uint32_t *vuv = malloc((size_t)P->nv * sizeof *vuv);
-    if (!nrm || !s.tw || !s.vc || !s.flag || !s.fdead || !s.mark || !s.queue || !vuv) {
+    uint32_t *vuv = malloc((size_t)P->nv * sizeof *vuv), *mark1 = calloc(P->nv, sizeof *mark1),
+             *queue1 = malloc((size_t)P->nv * sizeof *queue1);
+    uint8_t *grp = malloc(P->nv), *fgroup = malloc((size_t)m->nf + 1);
+    if (!nrm || !s.tw || !s.vc || !s.flag || !s.fdead || !s.mark || !s.queue || !vuv || !mark1 || !queue1 || !grp ||
+        !fgroup) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "simplify: out of memory");
         goto done;
     }
@@ -369,15 +464,59 @@ sq_status sq_param_simplify(const sq_mesh *m, sq_param *P, uint32_t *removed, sq
         else if (vuv[v] != P->tri_uv[c]) s.flag[v] = 0;
         if (P->he_seam[c]) s.flag[v] = s.flag[P->tri[sq_param_corner_next(c)]] = 0;
     }
+    /* Two halves of the input faces, each simplified on its own (in two
+     * threads when asked), then the rest. A vertex is of half g when
+     * every triangle around it lies in an input face of half g (else of
+     * the border). A half's pass removes a vertex only when it, its
+     * neighbours and its target's neighbours are of that half: it writes
+     * only their triangles (v's and w's) and their flags, corners and
+     * queue entries, and reads only those and the stars of its own
+     * vertices; a collapse keeps every vertex's half, and a vertex of one
+     * half never shares a triangle with one of the other. So the halves
+     * never touch the same memory, each does the same whatever the other
+     * does, and the result is the same with one thread or two. The last
+     * pass, over everything, starts from the border's vertices and those
+     * a half's pass left (F_DEFER). */
+    st = split_faces(m, P, fgroup, err);
+    if (st) goto done;
+    for (uint32_t v = 0; v < P->nv; v++) grp[v] = G_ALL;
+    for (uint32_t c = 0; c < 3 * P->nf; c++) {
+        uint32_t v = P->tri[c];
+        uint8_t g = fgroup[P->tri_in[c / 3]];
+        grp[v] = grp[v] == G_ALL || grp[v] == g ? g : G_BORDER;
+    }
+    s.grp = grp;
+    simp h[2];
+    h[0] = s, h[1] = s;
+    h[1].mark = mark1, h[1].queue = queue1;
     /* in the order the triangles meet them: neighbours are tried close
      * together in time and in memory (20-27% faster on the cells' outputs
      * than by vertex index, and 4-5% fewer faces) */
-    for (uint32_t c = 0; c < 3 * P->nf; c++) enqueue(&s, P->tri[c]);
-    uint32_t total = simplify_queue(&s);
+    for (int g = 0; g < 2; g++) {
+        h[g].group = (uint8_t)g;
+        for (uint32_t c = 0; c < 3 * P->nf; c++) enqueue(&h[g], P->tri[c]);
+    }
+    pthread_t th;
+    int helper = threads > 1 && pthread_create(&th, NULL, run_half, &h[1]) == 0;
+    run_half(&h[0]);
+    if (helper) pthread_join(th, NULL);
+    else run_half(&h[1]);
+    /* the last pass: h[0]'s arrays, the counts of both */
+    s.group = G_ALL;
+    s.nlink = h[0].nlink + h[1].nlink;
+    s.stamp = h[0].stamp;
+    for (uint32_t c = 0; c < 3 * P->nf; c++) {
+        uint32_t v = P->tri[c];
+        if (grp[v] == G_BORDER || (s.flag[v] & F_DEFER)) {
+            s.flag[v] &= (uint8_t)~F_DEFER;
+            enqueue(&s, v);
+        }
+    }
+    uint32_t total = h[0].done + h[1].done + simplify_queue(&s);
     st = compact(&s, err);
     if (st == SQ_OK && removed) *removed = total;
 done:
     free(nrm), free(s.tw), free(s.vc), free(s.flag), free(s.fdead), free(s.mark), free(s.queue);
-    free(vuv);
+    free(vuv), free(mark1), free(queue1), free(grp), free(fgroup);
     return st;
 }

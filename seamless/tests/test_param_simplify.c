@@ -114,7 +114,26 @@ static void check_model(const char *rel, int want_overlay)
     opt.simplify = SQ_SIMPLIFY_OFF;
     if (sq_param_build(&m, val, &opt, &A, &sa, &err)) fail_msg("%s, unsimplified: %s", rel, err.msg);
     opt.simplify = SQ_SIMPLIFY_ON;
+    opt.threads = 1;
     if (sq_param_build(&m, val, &opt, &B, &sb, &err)) fail_msg("%s, simplified: %s", rel, err.msg);
+    /* the same simplification in two threads (the input's faces in two
+     * halves, then the vertices between them): the same map to the bit */
+    {
+        sq_param C;
+        sq_param_init(&C);
+        opt.simplify = SQ_SIMPLIFY_OFF;
+        if (sq_param_build(&m, val, &opt, &C, NULL, &err)) fail_msg("%s, unsimplified again: %s", rel, err.msg);
+        uint32_t removed = 0;
+        assert_int_equal(sq_param_simplify_threads(&m, &C, 2, &removed, &err), SQ_OK);
+        assert_int_equal(removed, sb.simplified);
+        assert_true(C.nv == B.nv && C.nf == B.nf && C.nuv == B.nuv);
+        assert_memory_equal(C.pos, B.pos, 3 * (size_t)B.nv * sizeof *B.pos);
+        assert_memory_equal(C.tri, B.tri, 3 * (size_t)B.nf * sizeof *B.tri);
+        assert_memory_equal(C.uv, B.uv, 2 * (size_t)B.nuv * sizeof *B.uv);
+        assert_memory_equal(C.tri_uv, B.tri_uv, 3 * (size_t)B.nf * sizeof *B.tri_uv);
+        assert_memory_equal(C.tri_in, B.tri_in, (size_t)B.nf * sizeof *B.tri_in);
+        sq_param_free(&C);
+    }
     assert_int_equal(sa.overlay, want_overlay);
     assert_int_equal(sb.overlay, want_overlay);
     assert_int_equal(sa.simplified, 0);
