@@ -3,6 +3,7 @@
 #include "sq_overlay.h"
 
 #include <assert.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,17 +26,28 @@ void sq_overlay_free(sq_overlay *X)
     sq_overlay_init(X);
 }
 
+/* The overlay of one range of B's faces (sq_overlay_build: two ranges,
+ * each with its own ov, in two threads or one after the other) */
 typedef struct ov {
     uint32_t nbnd, na, nv;
     const double *xy;
     const sq_overlay_mesh *A, *B;
-    sq_overlay *X;
+    sq_overlay *X;   /* this range's crossings (ids nv + k) and triangles */
+    uint32_t *loc;   /* nv: as sq_overlay.loc, for what this range found  */
+    double *bary;    /* 3 nv                                              */
+    uint32_t *x_g;   /* nx: the B face whose walk made crossing k (or NULL) */
     uint32_t cap_x;
     uint64_t *hkey; /* crossing table: key (A edge << 32 | B edge) + 1, 0 empty */
     uint32_t *hval;
     uint32_t hcap;
     uint64_t rng;
     int degenerate; /* set by the predicates below */
+    uint32_t g0, g1; /* the range [g0, g1) of B's faces                   */
+    uint32_t g;      /* the face being walked                             */
+    uint64_t max_crossings;
+    sq_status st;    /* the range's result, err its message               */
+    sq_error err;
+    uint32_t stop_g; /* over the budget after face stop_g (else SQ_NONE)  */
 } ov;
 
 static inline uint32_t nxt(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
@@ -105,7 +117,9 @@ static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
         if (ta) X->x_ta = ta;
         double *tb = realloc(X->x_tb, cap * sizeof *tb);
         if (tb) X->x_tb = tb;
-        if (!a || !b || !ta || !tb) return -1;
+        uint32_t *xg = c->x_g ? realloc(c->x_g, cap * sizeof *xg) : NULL;
+        if (xg) c->x_g = xg;
+        if (!a || !b || !ta || !tb || (c->x_g && !xg)) return -1;
         c->cap_x = cap;
     }
     /* parameters from the (rounded) determinants; the order of events was
@@ -121,6 +135,7 @@ static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
     if (!(tb >= 0 && tb <= 1)) tb = tb > 1 ? 1 : tb < 0 ? 0 : 0.5;
     uint32_t k = X->nx++;
     X->x_ha[k] = ha, X->x_hb[k] = hb, X->x_ta[k] = ta, X->x_tb[k] = tb;
+    if (c->x_g) c->x_g[k] = c->g;
     c->hkey[s] = key, c->hval[s] = c->nv + k;
     *id = c->nv + k;
     return 0;
@@ -234,18 +249,18 @@ static int pair_polygon(ov *c, uint32_t fa, uint32_t fb, uint32_t poly[15])
         if (l < 3) {
             poly[q] = a[l];
             uint32_t v = a[l];
-            if (v >= c->nbnd && c->X->loc[v] == SQ_NONE) {
-                c->X->loc[v] = fb;
+            if (v >= c->nbnd && c->loc[v] == SQ_NONE) {
+                c->loc[v] = fb;
                 barycentric(c->xy + 2 * (size_t)v, c->xy + 2 * (size_t)b[0], c->xy + 2 * (size_t)b[1],
-                            c->xy + 2 * (size_t)b[2], c->X->bary + 3 * (size_t)v);
+                            c->xy + 2 * (size_t)b[2], c->bary + 3 * (size_t)v);
             }
         } else if (l < 6) {
             uint32_t v = b[l - 3];
             poly[q] = v;
-            if (v >= c->na && c->X->loc[v] == SQ_NONE) {
-                c->X->loc[v] = fa;
+            if (v >= c->na && c->loc[v] == SQ_NONE) {
+                c->loc[v] = fa;
                 barycentric(c->xy + 2 * (size_t)v, c->xy + 2 * (size_t)a[0], c->xy + 2 * (size_t)a[1],
-                            c->xy + 2 * (size_t)a[2], c->X->bary + 3 * (size_t)v);
+                            c->xy + 2 * (size_t)a[2], c->bary + 3 * (size_t)v);
             }
         } else {
             uint32_t i = (l - 6) / 3, j = (l - 6) % 3;
@@ -321,53 +336,44 @@ static uint32_t bad_faces(const double *xy, const sq_overlay_mesh *M)
     return bad;
 }
 
-sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
-                           const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
-                           sq_overlay *out, sq_error *err)
+/* Walks B's faces [c->g0, c->g1) in order: each from a face of A holding
+ * its interior vertex, over the faces of A it meets. c->st, c->err: the
+ * first failure; c->stop_g: the face after which this range alone had
+ * more than max_crossings crossings. */
+static void walk_range(ov *c)
 {
-    sq_overlay_init(out);
-    if (!xy || !A || !B || nbnd < 3 || na < nbnd || nv < na || !A->nf || !B->nf)
-        return sq_error_set(err, SQ_ERR_ARGUMENT, "overlay: bad arguments");
-    uint32_t ba = bad_faces(xy, A), bb = bad_faces(xy, B);
-    if (ba || bb)
-        return sq_error_set(err, SQ_ERR_SOLVER,
-                            "overlay: the disk maps are not embeddings in floating point (%u of %u "
-                            "surface triangles, %u of %u domain triangles not positively oriented)",
-                            ba, A->nf, bb, B->nf);
-    ov c;
-    memset(&c, 0, sizeof c);
-    c.nbnd = nbnd, c.na = na, c.nv = nv, c.xy = xy, c.A = A, c.B = B, c.X = out;
-    c.rng = 0x2545F4914F6CDD1Dull;
+    const sq_overlay_mesh *A = c->A, *B = c->B;
+    sq_error *err = &c->err;
+    sq_overlay *out = c->X;
     sq_status st = SQ_OK;
     uint32_t *mark = malloc((size_t)A->nf * sizeof *mark);
     uint32_t *queue = malloc((size_t)A->nf * sizeof *queue);
-    out->loc = malloc((size_t)nv * sizeof *out->loc);
-    out->bary = calloc(3 * (size_t)nv, sizeof *out->bary);
-    if (!mark || !queue || !out->loc || !out->bary) {
+    if (!mark || !queue) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
     for (uint32_t f = 0; f < A->nf; f++) mark[f] = SQ_NONE;
-    for (uint32_t v = 0; v < nv; v++) out->loc[v] = SQ_NONE;
     uint32_t hint = 0;
-    for (uint32_t g = 0; g < B->nf; g++) {
+    for (uint32_t g = c->g0; g < c->g1; g++) {
+        c->g = g;
         const uint32_t *t = B->tri + 3 * (size_t)g;
         uint32_t b = SQ_NONE;
         for (int k = 0; k < 3 && b == SQ_NONE; k++)
-            if (t[k] >= na) b = t[k];
+            if (t[k] >= c->na) b = t[k];
         if (b == SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: domain triangle %u has no interior vertex", g);
             goto done;
         }
-        uint32_t seed = out->loc[b];
+        /* the face of A holding b (the same whichever range found it) */
+        uint32_t seed = c->loc[b];
         if (seed == SQ_NONE) {
-            c.degenerate = 0;
-            seed = locate(&c, hint, b);
+            c->degenerate = 0;
+            seed = locate(c, hint, b);
             if (seed == SQ_NONE) {
-                st = sq_error_set(err, c.degenerate ? SQ_ERR_SOLVER : SQ_ERR_INTERNAL,
+                st = sq_error_set(err, c->degenerate ? SQ_ERR_SOLVER : SQ_ERR_INTERNAL,
                                   "overlay: domain vertex %u %s", b,
-                                  c.degenerate ? "lies on a surface edge (degenerate)"
-                                               : "is not inside the surface's disk");
+                                  c->degenerate ? "lies on a surface edge (degenerate)"
+                                                : "is not inside the surface's disk");
                 goto done;
             }
         }
@@ -378,8 +384,8 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
         while (qh < qt) {
             uint32_t fa = queue[qh++];
             uint32_t poly[15];
-            int n = pair_polygon(&c, fa, g, poly);
-            if (n == -2 || (n > 0 && emit(&c, poly, n, fa, g))) {
+            int n = pair_polygon(c, fa, g, poly);
+            if (n == -2 || (n > 0 && emit(c, poly, n, fa, g))) {
                 st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                 goto done;
             }
@@ -392,7 +398,7 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
             }
             if (n == 0) continue;
             npieces++;
-            if (max_crossings && out->nx > max_crossings) break; /* reported below */
+            if (c->max_crossings && out->nx > c->max_crossings) break; /* reported below */
             for (uint32_t i = 0; i < 3; i++) {
                 uint32_t tw = A->twin[3 * fa + i];
                 if (tw == SQ_NONE || mark[tw / 3] == g) continue;
@@ -400,18 +406,189 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
                 queue[qt++] = tw / 3;
             }
         }
-        if (max_crossings && out->nx > max_crossings) {
-            st = sq_error_set(err, SQ_ERR_SOLVER,
-                              "overlay: more than %llu crossings of surface and domain edges (after %u of "
-                              "%u domain triangles): the two disk maps differ too much",
-                              (unsigned long long)max_crossings, g + 1, B->nf);
-            goto done;
+        if (c->max_crossings && out->nx > c->max_crossings) {
+            c->stop_g = g;
+            break;
         }
         if (!npieces) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: domain triangle %u meets no surface triangle", g);
             goto done;
         }
     }
+done:
+    free(mark);
+    free(queue);
+    c->st = st;
+}
+
+static void *walk_range_thread(void *arg)
+{
+    walk_range(arg);
+    return NULL;
+}
+
+/* The id in range 0 of crossing (ha, hb) (canonical halfedges), or
+ * SQ_NONE */
+static uint32_t find_crossing(const ov *c, uint32_t ha, uint32_t hb)
+{
+    if (!c->hcap) return SQ_NONE;
+    uint64_t key = ((uint64_t)ha << 32 | hb) + 1;
+    uint32_t s = (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 32) & (c->hcap - 1);
+    while (c->hkey[s] && c->hkey[s] != key) s = (s + 1) & (c->hcap - 1);
+    return c->hkey[s] ? c->hval[s] : SQ_NONE;
+}
+
+sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
+                           const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
+                           sq_overlay *out, sq_error *err)
+{
+    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 1, out, err);
+}
+
+/* Two ranges of B's faces, [0, nf/2) and [nf/2, nf), each walked with its
+ * own crossing table, then range 1's crossings merged into range 0's: a
+ * crossing of an edge of B between the ranges is made by both, and keeps
+ * range 0's id; range 1's others get the next ids in the order range 1
+ * made them. That is the numbering of one walk over all faces in order
+ * (the face holding a domain vertex and the walks from it do not depend
+ * on which range located it first), so the result is that walk's, bit
+ * for bit, with one thread or two. The crossing budget: each range stops
+ * once it alone has more than max_crossings (range 1 counts the shared
+ * crossings too), and the merged count must not exceed it either. */
+sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
+                                   const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
+                                   uint32_t threads, sq_overlay *out, sq_error *err)
+{
+    sq_overlay_init(out);
+    if (!xy || !A || !B || nbnd < 3 || na < nbnd || nv < na || !A->nf || !B->nf)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "overlay: bad arguments");
+    uint32_t ba = bad_faces(xy, A), bb = bad_faces(xy, B);
+    if (ba || bb)
+        return sq_error_set(err, SQ_ERR_SOLVER,
+                            "overlay: the disk maps are not embeddings in floating point (%u of %u "
+                            "surface triangles, %u of %u domain triangles not positively oriented)",
+                            ba, A->nf, bb, B->nf);
+    sq_overlay X1;
+    sq_overlay_init(&X1);
+    ov c[2];
+    memset(c, 0, sizeof c);
+    for (int r = 0; r < 2; r++) {
+        c[r].nbnd = nbnd, c[r].na = na, c[r].nv = nv, c[r].xy = xy, c[r].A = A, c[r].B = B;
+        c[r].rng = 0x2545F4914F6CDD1Dull;
+        c[r].max_crossings = max_crossings;
+        c[r].stop_g = SQ_NONE;
+    }
+    c[0].X = out, c[1].X = &X1;
+    c[0].g0 = 0, c[0].g1 = c[1].g0 = B->nf / 2, c[1].g1 = B->nf;
+    sq_status st = SQ_OK;
+    uint32_t *map = NULL;
+    out->loc = malloc((size_t)nv * sizeof *out->loc);
+    out->bary = calloc(3 * (size_t)nv, sizeof *out->bary);
+    X1.loc = malloc((size_t)nv * sizeof *X1.loc);
+    X1.bary = calloc(3 * (size_t)nv, sizeof *X1.bary);
+    c[1].x_g = malloc(sizeof *c[1].x_g);
+    if (!out->loc || !out->bary || !X1.loc || !X1.bary || !c[1].x_g) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t v = 0; v < nv; v++) out->loc[v] = X1.loc[v] = SQ_NONE;
+    c[0].loc = out->loc, c[0].bary = out->bary, c[1].loc = X1.loc, c[1].bary = X1.bary;
+    pthread_t th;
+    int helper = threads > 1 && c[1].g0 < c[1].g1 && pthread_create(&th, NULL, walk_range_thread, &c[1]) == 0;
+    walk_range(&c[0]);
+    if (helper) pthread_join(th, NULL);
+    else if (c[0].st == SQ_OK && c[0].stop_g == SQ_NONE) walk_range(&c[1]);
+    /* the first failure in face order, as one walk would report it */
+    for (int r = 0; r < 2; r++) {
+        if (c[r].st) {
+            st = c[r].st;
+            if (err) *err = c[r].err;
+            goto done;
+        }
+        if (c[r].stop_g != SQ_NONE) break;
+    }
+    /* range 1's crossings: range 0's id, or the next */
+    uint32_t n0 = out->nx, stop_g = c[0].stop_g;
+    map = malloc(((size_t)X1.nx + 1) * sizeof *map);
+    if (!map) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    if (stop_g == SQ_NONE) {
+        uint32_t added = 0;
+        for (uint32_t k = 0; k < X1.nx; k++) {
+            uint32_t id = find_crossing(&c[0], X1.x_ha[k], X1.x_hb[k]);
+            if (id == SQ_NONE) {
+                if (max_crossings && (uint64_t)n0 + added + 1 > max_crossings) {
+                    stop_g = c[1].x_g[k];
+                    break;
+                }
+                id = nv + n0 + added++;
+            }
+            map[k] = id;
+        }
+        if (stop_g == SQ_NONE) stop_g = c[1].stop_g;
+        if (stop_g == SQ_NONE && added) {
+            uint32_t nx = n0 + added;
+            uint32_t *a = realloc(out->x_ha, nx * sizeof *a);
+            if (a) out->x_ha = a;
+            uint32_t *b = realloc(out->x_hb, nx * sizeof *b);
+            if (b) out->x_hb = b;
+            double *ta = realloc(out->x_ta, nx * sizeof *ta);
+            if (ta) out->x_ta = ta;
+            double *tb = realloc(out->x_tb, nx * sizeof *tb);
+            if (tb) out->x_tb = tb;
+            if (!a || !b || !ta || !tb) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+                goto done;
+            }
+            for (uint32_t k = 0; k < X1.nx; k++) {
+                uint32_t j = map[k] - nv;
+                if (j < n0) continue;
+                out->x_ha[j] = X1.x_ha[k], out->x_hb[j] = X1.x_hb[k];
+                out->x_ta[j] = X1.x_ta[k], out->x_tb[j] = X1.x_tb[k];
+            }
+            out->nx = nx;
+        }
+    }
+    if (stop_g != SQ_NONE) {
+        st = sq_error_set(err, SQ_ERR_SOLVER,
+                          "overlay: more than %llu crossings of surface and domain edges (after %u of "
+                          "%u domain triangles): the two disk maps differ too much",
+                          (unsigned long long)max_crossings, stop_g + 1, B->nf);
+        goto done;
+    }
+    /* range 1's triangles after range 0's, with the merged ids */
+    if (X1.ntri) {
+        uint32_t nt = out->ntri + X1.ntri;
+        if (nt < out->ntri) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "overlay: more than 2^32 triangles");
+            goto done;
+        }
+        uint32_t *t = realloc(out->tri, 3 * (size_t)nt * sizeof *t);
+        if (t) out->tri = t;
+        uint32_t *ta = realloc(out->tri_fa, (size_t)nt * sizeof *ta);
+        if (ta) out->tri_fa = ta;
+        uint32_t *tb = realloc(out->tri_fb, (size_t)nt * sizeof *tb);
+        if (tb) out->tri_fb = tb;
+        if (!t || !ta || !tb) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        out->cap_tri = nt;
+        for (size_t i = 0; i < 3 * (size_t)X1.ntri; i++) {
+            uint32_t v = X1.tri[i];
+            out->tri[3 * (size_t)out->ntri + i] = v < nv ? v : map[v - nv];
+        }
+        memcpy(out->tri_fa + out->ntri, X1.tri_fa, (size_t)X1.ntri * sizeof *X1.tri_fa);
+        memcpy(out->tri_fb + out->ntri, X1.tri_fb, (size_t)X1.ntri * sizeof *X1.tri_fb);
+        out->ntri = nt;
+    }
+    for (uint32_t v = 0; v < nv; v++)
+        if (out->loc[v] == SQ_NONE && X1.loc[v] != SQ_NONE) {
+            out->loc[v] = X1.loc[v];
+            memcpy(out->bary + 3 * (size_t)v, X1.bary + 3 * (size_t)v, 3 * sizeof *out->bary);
+        }
     /* every interior vertex of either mesh must have been placed */
     for (uint32_t v = nbnd; v < nv; v++)
         if (out->loc[v] == SQ_NONE) {
@@ -419,10 +596,10 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
             goto done;
         }
 done:
-    free(mark);
-    free(queue);
-    free(c.hkey);
-    free(c.hval);
+    for (int r = 0; r < 2; r++) free(c[r].hkey), free(c[r].hval);
+    free(c[1].x_g);
+    free(map);
+    sq_overlay_free(&X1);
     if (st) sq_overlay_free(out);
     return st;
 }

@@ -73,6 +73,15 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
                            const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                            sq_overlay *out, sq_error *err);
 
+/* The same, B's faces walked in two ranges (in two threads when threads >
+ * 1); the result does not depend on threads and is the one of a single
+ * walk over B's faces in order. The crossing budget applies to each range
+ * alone (the second counting the crossings it shares with the first) and
+ * to the whole. */
+sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
+                                   const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
+                                   uint32_t threads, sq_overlay *out, sq_error *err);
+
 #ifdef __cplusplus
 }
 #endif

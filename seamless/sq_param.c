@@ -2725,11 +2725,12 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     if (st) goto done;
     sq_overlay_mesh Am = {S->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
     progress(c, "overlay", 0.75);
-    st = sq_overlay_build(nbl, na, nv, xy, &Am, &Bm,
-                          c->opt->max_crossings ? c->opt->max_crossings
-                          : c->qtri ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
-                                                : steiner_budget(c),
-                          &X, err);
+    /* in two threads where the caller allows them (the same result) */
+    st = sq_overlay_build_threads(nbl, na, nv, xy, &Am, &Bm,
+                                  c->opt->max_crossings ? c->opt->max_crossings
+                                  : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
+                                                        : steiner_budget(c),
+                                  c->opt->threads ? c->opt->threads : 1, &X, err);
     if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     /* the output: S's vertices, then B's interior vertices, then the crossings */

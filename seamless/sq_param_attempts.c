@@ -183,7 +183,6 @@ static sq_param_options fallback_options(const sq_mesh *m, const sq_param_option
     sq_param_options f = *o;
     f.tree = SQ_TREE_QTRI;
     if (sq_mesh_genus(m) == 1) f.guidance = SQ_GUIDE_ON;
-    f.threads = 1;
     return f;
 }
 

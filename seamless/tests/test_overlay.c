@@ -97,6 +97,22 @@ static uint32_t check_pair(uint32_t n)
     }
     if (st) fprintf(stderr, "overlay n=%u: %s\n", n, err.msg);
     assert_int_equal(st, SQ_OK);
+    /* B's faces in two ranges in two threads: the same overlay, bit for bit */
+    {
+        sq_overlay Y;
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, &Y, &err), SQ_OK);
+        assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
+        assert_memory_equal(Y.x_ha, X.x_ha, X.nx * sizeof *X.x_ha);
+        assert_memory_equal(Y.x_hb, X.x_hb, X.nx * sizeof *X.x_hb);
+        assert_memory_equal(Y.x_ta, X.x_ta, X.nx * sizeof *X.x_ta);
+        assert_memory_equal(Y.x_tb, X.x_tb, X.nx * sizeof *X.x_tb);
+        assert_memory_equal(Y.loc, X.loc, nv * sizeof *X.loc);
+        assert_memory_equal(Y.bary, X.bary, 3 * (size_t)nv * sizeof *X.bary);
+        assert_memory_equal(Y.tri, X.tri, 3 * (size_t)X.ntri * sizeof *X.tri);
+        assert_memory_equal(Y.tri_fa, X.tri_fa, X.ntri * sizeof *X.tri_fa);
+        assert_memory_equal(Y.tri_fb, X.tri_fb, X.ntri * sizeof *X.tri_fb);
+        sq_overlay_free(&Y);
+    }
     /* the points: vertices, then crossings by their A parameter */
     double *p = malloc(2 * ((size_t)nv + X.nx) * sizeof *p);
     assert_non_null(p);
