@@ -81,7 +81,8 @@ typedef struct sq_param_options {
     /* Attempts run at once, each in its own thread (default 1; 0 counts
      * as 1). The result is the same as with 1: the lowest attempt that
      * passes (later ones are cancelled, earlier ones awaited); memory grows
-     * with the attempts running. */
+     * with the attempts running. With 2 or more, the overlay's walk and the
+     * simplification use two threads as well (the same result too). */
     uint32_t threads;
     /* The interior map (steps 6-7), SQ_INTERIOR_*: Omega cut into
      * rectangles by chords replayed on the surface, each cell mapped by
