@@ -77,6 +77,36 @@ static int before(ov *c, uint32_t p, uint32_t x, uint32_t y)
     return s > 0;
 }
 
+/* Room for cap crossings in X (x_g too, when not NULL); -1: out of memory */
+static int reserve_crossings(sq_overlay *X, uint32_t **x_g, uint32_t cap)
+{
+    uint32_t *a = realloc(X->x_ha, cap * sizeof *a);
+    if (a) X->x_ha = a;
+    uint32_t *b = realloc(X->x_hb, cap * sizeof *b);
+    if (b) X->x_hb = b;
+    double *ta = realloc(X->x_ta, cap * sizeof *ta);
+    if (ta) X->x_ta = ta;
+    double *tb = realloc(X->x_tb, cap * sizeof *tb);
+    if (tb) X->x_tb = tb;
+    uint32_t *g = x_g && *x_g ? realloc(*x_g, cap * sizeof *g) : NULL;
+    if (g) *x_g = g;
+    return a && b && ta && tb && (!x_g || !*x_g || g) ? 0 : -1;
+}
+
+/* Room for cap triangles in X; -1: out of memory */
+static int reserve_triangles(sq_overlay *X, uint32_t cap)
+{
+    uint32_t *t = realloc(X->tri, 3 * (size_t)cap * sizeof *t);
+    if (t) X->tri = t;
+    uint32_t *ta = realloc(X->tri_fa, cap * sizeof *ta);
+    if (ta) X->tri_fa = ta;
+    uint32_t *tb = realloc(X->tri_fb, cap * sizeof *tb);
+    if (tb) X->tri_fb = tb;
+    if (!t || !ta || !tb) return -1;
+    X->cap_tri = cap;
+    return 0;
+}
+
 static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
 {
     const sq_overlay_mesh *A = c->A, *B = c->B;
@@ -109,17 +139,7 @@ static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
     sq_overlay *X = c->X;
     if (X->nx == c->cap_x) {
         uint32_t cap = c->cap_x ? 2 * c->cap_x : 1024;
-        uint32_t *a = realloc(X->x_ha, cap * sizeof *a);
-        if (a) X->x_ha = a;
-        uint32_t *b = realloc(X->x_hb, cap * sizeof *b);
-        if (b) X->x_hb = b;
-        double *ta = realloc(X->x_ta, cap * sizeof *ta);
-        if (ta) X->x_ta = ta;
-        double *tb = realloc(X->x_tb, cap * sizeof *tb);
-        if (tb) X->x_tb = tb;
-        uint32_t *xg = c->x_g ? realloc(c->x_g, cap * sizeof *xg) : NULL;
-        if (xg) c->x_g = xg;
-        if (!a || !b || !ta || !tb || (c->x_g && !xg)) return -1;
+        if (reserve_crossings(X, &c->x_g, cap)) return -1;
         c->cap_x = cap;
     }
     /* parameters from the (rounded) determinants; the order of events was
@@ -274,17 +294,7 @@ static int emit(ov *c, const uint32_t *poly, int n, uint32_t fa, uint32_t fb)
 {
     sq_overlay *X = c->X;
     for (int k = 1; k + 1 < n; k++) {
-        if (X->ntri == X->cap_tri) {
-            uint32_t cap = X->cap_tri ? 2 * X->cap_tri : 4096;
-            uint32_t *t = realloc(X->tri, 3 * (size_t)cap * sizeof *t);
-            if (t) X->tri = t;
-            uint32_t *ta = realloc(X->tri_fa, cap * sizeof *ta);
-            if (ta) X->tri_fa = ta;
-            uint32_t *tb = realloc(X->tri_fb, cap * sizeof *tb);
-            if (tb) X->tri_fb = tb;
-            if (!t || !ta || !tb) return -1;
-            X->cap_tri = cap;
-        }
+        if (X->ntri == X->cap_tri && reserve_triangles(X, X->cap_tri ? 2 * X->cap_tri : 4096)) return -1;
         uint32_t *t = X->tri + 3 * (size_t)X->ntri;
         t[0] = poly[0], t[1] = poly[k], t[2] = poly[k + 1];
         X->tri_fa[X->ntri] = fa, X->tri_fb[X->ntri] = fb;
@@ -530,15 +540,7 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
         if (stop_g == SQ_NONE) stop_g = c[1].stop_g;
         if (stop_g == SQ_NONE && added) {
             uint32_t nx = n0 + added;
-            uint32_t *a = realloc(out->x_ha, nx * sizeof *a);
-            if (a) out->x_ha = a;
-            uint32_t *b = realloc(out->x_hb, nx * sizeof *b);
-            if (b) out->x_hb = b;
-            double *ta = realloc(out->x_ta, nx * sizeof *ta);
-            if (ta) out->x_ta = ta;
-            double *tb = realloc(out->x_tb, nx * sizeof *tb);
-            if (tb) out->x_tb = tb;
-            if (!a || !b || !ta || !tb) {
+            if (reserve_crossings(out, NULL, nx)) {
                 st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                 goto done;
             }
@@ -565,17 +567,10 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
             st = sq_error_set(err, SQ_ERR_NOMEM, "overlay: more than 2^32 triangles");
             goto done;
         }
-        uint32_t *t = realloc(out->tri, 3 * (size_t)nt * sizeof *t);
-        if (t) out->tri = t;
-        uint32_t *ta = realloc(out->tri_fa, (size_t)nt * sizeof *ta);
-        if (ta) out->tri_fa = ta;
-        uint32_t *tb = realloc(out->tri_fb, (size_t)nt * sizeof *tb);
-        if (tb) out->tri_fb = tb;
-        if (!t || !ta || !tb) {
+        if (reserve_triangles(out, nt)) {
             st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
             goto done;
         }
-        out->cap_tri = nt;
         for (size_t i = 0; i < 3 * (size_t)X1.ntri; i++) {
             uint32_t v = X1.tri[i];
             out->tri[3 * (size_t)out->ntri + i] = v < nv ? v : map[v - nv];

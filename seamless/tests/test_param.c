@@ -197,6 +197,16 @@ static void test_cup_guided(void **state)
     unload(&M);
 }
 
+/* P and Q the same map, bit for bit */
+static void assert_same_map(const sq_param *P, const sq_param *Q)
+{
+    assert_true(P->nv == Q->nv && P->nf == Q->nf && P->nuv == Q->nuv);
+    assert_memory_equal(P->pos, Q->pos, 3 * (size_t)P->nv * sizeof *P->pos);
+    assert_memory_equal(P->tri, Q->tri, 3 * (size_t)P->nf * sizeof *P->tri);
+    assert_memory_equal(P->uv, Q->uv, 2 * (size_t)P->nuv * sizeof *P->uv);
+    assert_memory_equal(P->tri_uv, Q->tri_uv, 3 * (size_t)P->nf * sizeof *P->tri_uv);
+}
+
 /* Attempts in threads (sq_param_options.threads) give the result of one
  * after another: mpz/cup from seed 2 without rounds passes at attempt 2
  * (seed 3) with 1, 2 and 3 threads, the same map to the bit; with a
@@ -223,11 +233,7 @@ static void test_threads(void **state)
         sq_param_init(&P);
         if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("cup, %u threads: %s", t, err.msg);
         assert_true(st.attempts == s1.attempts && st.seed_used == s1.seed_used && st.faces_out == s1.faces_out);
-        assert_true(P.nv == P1.nv && P.nf == P1.nf && P.nuv == P1.nuv);
-        assert_memory_equal(P.pos, P1.pos, 3 * (size_t)P.nv * sizeof *P.pos);
-        assert_memory_equal(P.tri, P1.tri, 3 * (size_t)P.nf * sizeof *P.tri);
-        assert_memory_equal(P.uv, P1.uv, 2 * (size_t)P.nuv * sizeof *P.uv);
-        assert_memory_equal(P.tri_uv, P1.tri_uv, 3 * (size_t)P.nf * sizeof *P.tri_uv);
+        assert_same_map(&P, &P1);
         sq_param_free(&P);
     }
     sq_param_free(&P1);
@@ -271,11 +277,7 @@ static void test_fallback_threads(void **state)
     sq_param_init(&P);
     if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("eight, 2 threads: %s", err.msg);
     assert_true(st.attempts == 3 && st.seed_used == 1 && st.fallback && st.tree_qtri);
-    assert_true(P.nv == P1.nv && P.nf == P1.nf && P.nuv == P1.nuv);
-    assert_memory_equal(P.pos, P1.pos, 3 * (size_t)P.nv * sizeof *P.pos);
-    assert_memory_equal(P.tri, P1.tri, 3 * (size_t)P.nf * sizeof *P.tri);
-    assert_memory_equal(P.uv, P1.uv, 2 * (size_t)P.nuv * sizeof *P.uv);
-    assert_memory_equal(P.tri_uv, P1.tri_uv, 3 * (size_t)P.nf * sizeof *P.tri_uv);
+    assert_same_map(&P, &P1);
     assert_referee_passes(&M, &P, "eight (fallback, 2 threads)");
     sq_param_free(&P);
     sq_param_free(&P1);
