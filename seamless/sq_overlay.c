@@ -35,7 +35,8 @@ typedef struct ov {
     sq_overlay *X;   /* this range's crossings (ids nv + k) and triangles */
     uint32_t *loc;   /* nv: as sq_overlay.loc, for what this range found  */
     double *bary;    /* 3 nv                                              */
-    uint32_t *x_g;   /* nx: the B face whose walk made crossing k (or NULL) */
+    int keep_g;      /* record x_g (range 1: the merge's budget needs it)  */
+    uint32_t *x_g;   /* nx: the B face whose walk made crossing k          */
     uint32_t cap_x;
     uint64_t *hkey; /* crossing table: key (A edge << 32 | B edge) + 1, 0 empty */
     uint32_t *hval;
@@ -77,7 +78,8 @@ static int before(ov *c, uint32_t p, uint32_t x, uint32_t y)
     return s > 0;
 }
 
-/* Room for cap crossings in X (x_g too, when not NULL); -1: out of memory */
+/* Room for cap crossings in X (and in *x_g, when x_g is not NULL); -1: out
+ * of memory */
 static int reserve_crossings(sq_overlay *X, uint32_t **x_g, uint32_t cap)
 {
     uint32_t *a = realloc(X->x_ha, cap * sizeof *a);
@@ -88,9 +90,9 @@ static int reserve_crossings(sq_overlay *X, uint32_t **x_g, uint32_t cap)
     if (ta) X->x_ta = ta;
     double *tb = realloc(X->x_tb, cap * sizeof *tb);
     if (tb) X->x_tb = tb;
-    uint32_t *g = x_g && *x_g ? realloc(*x_g, cap * sizeof *g) : NULL;
+    uint32_t *g = x_g ? realloc(*x_g, cap * sizeof *g) : NULL;
     if (g) *x_g = g;
-    return a && b && ta && tb && (!x_g || !*x_g || g) ? 0 : -1;
+    return a && b && ta && tb && (!x_g || g) ? 0 : -1;
 }
 
 /* Room for cap triangles in X; -1: out of memory */
@@ -107,12 +109,24 @@ static int reserve_triangles(sq_overlay *X, uint32_t cap)
     return 0;
 }
 
+/* The crossing table's key of A halfedge ha and B halfedge hb (0: empty) */
+static uint64_t crossing_key(uint32_t ha, uint32_t hb) { return ((uint64_t)ha << 32 | hb) + 1; }
+
+/* The crossing table's slot of key: the one holding it, or the empty one
+ * where it would go (linear probing) */
+static uint32_t table_slot(const ov *c, uint64_t key)
+{
+    uint32_t s = (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 32) & (c->hcap - 1);
+    while (c->hkey[s] && c->hkey[s] != key) s = (s + 1) & (c->hcap - 1);
+    return s;
+}
+
 static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
 {
     const sq_overlay_mesh *A = c->A, *B = c->B;
     if (A->twin[ha] != SQ_NONE && A->twin[ha] < ha) ha = A->twin[ha];
     if (B->twin[hb] != SQ_NONE && B->twin[hb] < hb) hb = B->twin[hb];
-    uint64_t key = ((uint64_t)ha << 32 | hb) + 1;
+    uint64_t key = crossing_key(ha, hb);
     if (2 * (size_t)(c->X->nx + 1) > c->hcap) {
         uint32_t cap = c->hcap ? 2 * c->hcap : 1024;
         uint64_t *k2 = calloc(cap, sizeof *k2);
@@ -130,8 +144,7 @@ static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
         free(c->hkey), free(c->hval);
         c->hkey = k2, c->hval = v2, c->hcap = cap;
     }
-    uint32_t s = (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 32) & (c->hcap - 1);
-    while (c->hkey[s] && c->hkey[s] != key) s = (s + 1) & (c->hcap - 1);
+    uint32_t s = table_slot(c, key);
     if (c->hkey[s]) {
         *id = c->hval[s];
         return 0;
@@ -139,7 +152,7 @@ static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
     sq_overlay *X = c->X;
     if (X->nx == c->cap_x) {
         uint32_t cap = c->cap_x ? 2 * c->cap_x : 1024;
-        if (reserve_crossings(X, &c->x_g, cap)) return -1;
+        if (reserve_crossings(X, c->keep_g ? &c->x_g : NULL, cap)) return -1;
         c->cap_x = cap;
     }
     /* parameters from the (rounded) determinants; the order of events was
@@ -155,7 +168,7 @@ static int crossing_id(ov *c, uint32_t ha, uint32_t hb, uint32_t *id)
     if (!(tb >= 0 && tb <= 1)) tb = tb > 1 ? 1 : tb < 0 ? 0 : 0.5;
     uint32_t k = X->nx++;
     X->x_ha[k] = ha, X->x_hb[k] = hb, X->x_ta[k] = ta, X->x_tb[k] = tb;
-    if (c->x_g) c->x_g[k] = c->g;
+    if (c->keep_g) c->x_g[k] = c->g;
     c->hkey[s] = key, c->hval[s] = c->nv + k;
     *id = c->nv + k;
     return 0;
@@ -442,9 +455,7 @@ static void *walk_range_thread(void *arg)
 static uint32_t find_crossing(const ov *c, uint32_t ha, uint32_t hb)
 {
     if (!c->hcap) return SQ_NONE;
-    uint64_t key = ((uint64_t)ha << 32 | hb) + 1;
-    uint32_t s = (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 32) & (c->hcap - 1);
-    while (c->hkey[s] && c->hkey[s] != key) s = (s + 1) & (c->hcap - 1);
+    uint32_t s = table_slot(c, crossing_key(ha, hb));
     return c->hkey[s] ? c->hval[s] : SQ_NONE;
 }
 
@@ -496,8 +507,8 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
     out->bary = calloc(3 * (size_t)nv, sizeof *out->bary);
     X1.loc = malloc((size_t)nv * sizeof *X1.loc);
     X1.bary = calloc(3 * (size_t)nv, sizeof *X1.bary);
-    c[1].x_g = malloc(sizeof *c[1].x_g);
-    if (!out->loc || !out->bary || !X1.loc || !X1.bary || !c[1].x_g) {
+    c[1].keep_g = 1;
+    if (!out->loc || !out->bary || !X1.loc || !X1.bary) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }

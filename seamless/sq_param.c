@@ -3001,10 +3001,8 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     int then_overlay = opt->interior == SQ_INTERIOR_AUTO && !c.keep_flips;
     if (opt->refine || then_overlay) st = before_cells_save(&c, &saved);
     for (uint32_t round = 0; st == SQ_OK; round++) {
-        if (cancelled(&c)) {
-            st = sq_error_set(err, SQ_ERR_SOLVER, "cancelled: an earlier attempt passed");
-            break;
-        }
+        st = stop_if_cancelled(&c);
+        if (st) break;
         if (round) {
             progress(&c, "halving the cells with bad triangles", 0.55);
             free(c.h_uv); /* it describes the surface being dropped */

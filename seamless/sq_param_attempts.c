@@ -227,21 +227,17 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     job *jobs = calloc(total, sizeof *jobs);
     if (!jobs) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (attempts)");
     const sq_param_options f = fallback_options(m, &o);
-    sq_param_options rest = o;
-    rest.seed = o.seed + (alternate ? first / 2 : first);
     for (uint32_t a = 0; a < total; a++) {
         job *J = &jobs[a];
-        if (a < first) {
-            J->o = attempt_options(&o, a, alternate);
-            J->msg = a ? retry_message(alternate, a) : NULL;
-        } else if (a < first + nfb) {
+        if (a < first || a >= first + nfb) { /* the default choices' attempt d */
+            const uint32_t d = a < first ? a : a - nfb;
+            J->o = attempt_options(&o, d, alternate);
+            J->msg = d ? retry_message(alternate, d) : NULL;
+        } else {
             J->o = attempt_options(&f, a - first, 0);
             J->heavy = 1;
             J->msg = a == first ? "fallback: the surface tree copied into Q triangulated, overlay"
                                 : retry_message(0, a - first);
-        } else {
-            J->o = attempt_options(&rest, a - first - nfb, alternate);
-            J->msg = retry_message(alternate, a - first - nfb);
         }
     }
     uint32_t threads = o.threads ? o.threads : 1, pick = 0;
