@@ -4,6 +4,7 @@
 
 #include <assert.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -49,6 +50,7 @@ typedef struct ov {
     sq_status st;    /* the range's result, err its message               */
     sq_error err;
     uint32_t stop_g; /* over the budget after face stop_g (else SQ_NONE)  */
+    const _Atomic int *cancel; /* set: stop (NULL: never)                 */
 } ov;
 
 static inline uint32_t nxt(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
@@ -379,6 +381,10 @@ static void walk_range(ov *c)
     uint32_t hint = 0;
     for (uint32_t g = c->g0; g < c->g1; g++) {
         c->g = g;
+        if (c->cancel && g % 64 == 0 && atomic_load(c->cancel)) {
+            st = sq_error_set(err, SQ_ERR_SOLVER, "overlay: cancelled");
+            goto done;
+        }
         const uint32_t *t = B->tri + 3 * (size_t)g;
         uint32_t b = SQ_NONE;
         for (int k = 0; k < 3 && b == SQ_NONE; k++)
@@ -463,7 +469,7 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
                            const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                            sq_overlay *out, sq_error *err)
 {
-    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 1, out, err);
+    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 1, NULL, out, err);
 }
 
 /* Two ranges of B's faces, [0, nf/2) and [nf/2, nf), each walked with its
@@ -478,7 +484,7 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * crossings too), and the merged count must not exceed it either. */
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
-                                   uint32_t threads, sq_overlay *out, sq_error *err)
+                                   uint32_t threads, const _Atomic int *cancel, sq_overlay *out, sq_error *err)
 {
     sq_overlay_init(out);
     if (!xy || !A || !B || nbnd < 3 || na < nbnd || nv < na || !A->nf || !B->nf)
@@ -498,6 +504,7 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
         c[r].rng = 0x2545F4914F6CDD1Dull;
         c[r].max_crossings = max_crossings;
         c[r].stop_g = SQ_NONE;
+        c[r].cancel = cancel;
     }
     c[0].X = out, c[1].X = &X1;
     c[0].g0 = 0, c[0].g1 = c[1].g0 = B->nf / 2, c[1].g1 = B->nf;

@@ -77,10 +77,11 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * 1); the result does not depend on threads and is the one of a single
  * walk over B's faces in order. The crossing budget applies to each range
  * alone (the second counting the crossings it shares with the first) and
- * to the whole. */
+ * to the whole. cancel (may be NULL): once it is set (by another thread),
+ * the walk stops within 64 of B's faces with SQ_ERR_SOLVER "cancelled". */
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
-                                   uint32_t threads, sq_overlay *out, sq_error *err);
+                                   uint32_t threads, const _Atomic int *cancel, sq_overlay *out, sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -96,14 +96,16 @@ typedef struct sq_param_options {
      * check still holds); SQ_SIMPLIFY_OFF: the map as built. */
     int simplify;
     /* SQ_FALLBACK_AUTO (default): for genus >= 1 with the other choices
-     * at their defaults, when the first SQ_FALLBACK_AFTER (2) attempts
-     * fail on the map (SQ_ERR_SOLVER), up to 4 attempts (from the same
-     * seed, one at a time) with SQ_TREE_QTRI (genus 1: with SQ_GUIDE_ON),
-     * the same Steiner budget and a crossing budget of 400 per input face
-     * (at most 10,000,000; max_crossings, when given, instead); where
-     * those fail too, the other attempts with the default choices. It
-     * passes mpz/elk and cid/elephant, which nothing else does, in tens
-     * of seconds (docs/param.md). SQ_FALLBACK_OFF: none. */
+     * at their defaults, up to 4 attempts (from the same seed, one at a
+     * time) with SQ_TREE_QTRI (genus 1: with SQ_GUIDE_ON), the same
+     * Steiner budget and a crossing budget of 400 per input face (at most
+     * 10,000,000; max_crossings, when given, instead), in the list of
+     * attempts: the first after the default choices' first attempt (so
+     * with two threads beside it), the others after the first
+     * SQ_FALLBACK_AFTER (2) default attempts, then the default choices'
+     * others; the lowest that passes is the result. It passes mpz/elk and
+     * cid/elephant, which nothing else does, in 12 to 15 s
+     * (docs/param.md). SQ_FALLBACK_OFF: none. */
     int fallback;
 } sq_param_options;
 

@@ -12,9 +12,12 @@
  * without SQ_ERR_SOLVER, the attempts after it are cancelled and the ones
  * before it are awaited, so the result is the same as one after another,
  * only sooner. Progress is reported for the lowest attempt still running.
- * With the fallback, its attempts sit in the same list between the default
- * choices' first two and their others (sq_param_build), so its first one
- * starts as soon as a thread is free; they are heavy: one at a time. */
+ * With the fallback, its first attempt sits in the same list after the
+ * default choices' first, its others after their second (sq_param_build),
+ * so with two threads its first one runs from the start; they are heavy:
+ * nothing starts beside one (it holds up to a gigabyte and runs its
+ * overlay and simplification in two threads), but it may start beside a
+ * default attempt already running. */
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -43,7 +46,8 @@ static const char *retry_message(int alternate, uint32_t a)
 typedef struct job {
     sq_param_options o;
     const char *msg; /* progress line once it is the lowest still running */
-    int heavy;       /* one heavy attempt at a time (the fallback's)      */
+    int heavy;       /* the fallback's: nothing starts beside it          */
+    int is_fallback; /* one of the fallback's attempts                    */
     sq_param out;
     sq_param_stats stats;
     sq_error err;
@@ -60,7 +64,7 @@ typedef struct pool {
     uint32_t n;
     job *jobs;
     pthread_mutex_t mu;
-    pthread_cond_t cv; /* a job ended: a heavy one may start, or none */
+    pthread_cond_t cv; /* a job ended: a heavy one may have ended */
     int heavy_running;
     uint32_t next;   /* the next attempt to start                         */
     uint32_t ended;  /* the lowest attempt that ended without SQ_ERR_SOLVER */
@@ -84,7 +88,7 @@ static void *worker(void *arg)
         uint32_t a = P->next;
         if (a >= P->n || a > P->ended) break;
         job *J = &P->jobs[a];
-        if (J->heavy && P->heavy_running) {
+        if (P->heavy_running) { /* nothing starts beside a heavy one: it may use both threads */
             pthread_cond_wait(&P->cv, &P->mu);
             continue;
         }
@@ -186,6 +190,16 @@ static sq_param_options fallback_options(const sq_mesh *m, const sq_param_option
     return f;
 }
 
+/* The fallback's attempt at list position a (sq_param_build's order:
+ * position 1, then first + 1 .. first + nfb - 1), or SQ_NONE: one of the
+ * default choices'. */
+static uint32_t fallback_index(uint32_t a, uint32_t first, uint32_t nfb)
+{
+    if (!nfb) return SQ_NONE;
+    if (a == 1) return 0;
+    return a > first && a < first + nfb ? a - first : SQ_NONE;
+}
+
 sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
                          sq_param *out, sq_param_stats *stats, sq_error *err)
 {
@@ -208,18 +222,22 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
      * SQ_GUIDE_ON): each seed twice, the surface tree, then Q's tree */
     const int alternate = sq_param_uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
     /* with the fallback, in this order: the default choices' first
-     * SQ_FALLBACK_AFTER attempts, the fallback's (at most
-     * SQ_FALLBACK_ATTEMPTS, from the same seed), then the default choices'
-     * other attempts. Where the first two fail, the later ones rarely pass
-     * (block at the 15th, fertility_tri at the 7th, femur at the 3rd;
-     * elephant at none of 16, which cost it 36 to 54 s before the
-     * fallback), and the fallback's maps are far less distorted (mean
-     * conformal ratio 129 against 3.7e8 on block; docs/param.md). One
-     * ordered list on the threads: the fallback's first attempt starts as
-     * soon as a thread is free (elephant: while its first default attempt
-     * still runs), the result is still the lowest that passes. The
-     * fallback's attempts are heavy (each may hold gigabytes): one at a
-     * time. */
+     * attempt, the fallback's first, the default choices' others up to
+     * SQ_FALLBACK_AFTER, the fallback's others (at most
+     * SQ_FALLBACK_ATTEMPTS in all, from the same seed), then the default
+     * choices' other attempts. Where the first two default attempts fail,
+     * the later ones rarely pass (block at the 15th, fertility_tri at the
+     * 7th, femur at the 3rd; elephant at none of 16, which cost it 36 to
+     * 54 s before the fallback), and the fallback's maps are far less
+     * distorted (mean conformal ratio 129 against 3.7e8 on block;
+     * docs/param.md). One ordered list on the threads: with two, the
+     * fallback's first attempt runs beside the default choices' first
+     * from the start (elephant: 19 -> 15 s, the same map),
+     * and the result is still the lowest that passes. The fallback's
+     * attempts are heavy (each may hold a gigabyte and use both
+     * threads): nothing starts beside one (elephant: 15 -> 13 s, its
+     * default attempts 2 and 3 no longer run beside the fallback's first,
+     * which passes). */
     const int fb = uses_fallback(&o, sq_mesh_genus(m));
     const uint32_t first = fb && n > SQ_FALLBACK_AFTER ? SQ_FALLBACK_AFTER : n;
     const uint32_t nfb = fb ? (n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS) : 0;
@@ -227,17 +245,20 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     job *jobs = calloc(total, sizeof *jobs);
     if (!jobs) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (attempts)");
     const sq_param_options f = fallback_options(m, &o);
-    for (uint32_t a = 0; a < total; a++) {
+    /* list position a: the default choices' attempt d or the fallback's
+     * attempt a - first (positions 1 and first .. first + nfb - 1) */
+    for (uint32_t a = 0, d = 0; a < total; a++) {
         job *J = &jobs[a];
-        if (a < first || a >= first + nfb) { /* the default choices' attempt d */
-            const uint32_t d = a < first ? a : a - nfb;
+        const uint32_t k = fallback_index(a, first, nfb);
+        if (k == SQ_NONE) {
             J->o = attempt_options(&o, d, alternate);
             J->msg = d ? retry_message(alternate, d) : NULL;
+            d++;
         } else {
-            J->o = attempt_options(&f, a - first, 0);
-            J->heavy = 1;
-            J->msg = a == first ? "fallback: the surface tree copied into Q triangulated, overlay"
-                                : retry_message(0, a - first);
+            J->o = attempt_options(&f, k, 0);
+            J->heavy = J->is_fallback = 1;
+            J->msg = k == 0 ? "fallback: the surface tree copied into Q triangulated, overlay"
+                            : retry_message(0, k);
         }
     }
     uint32_t threads = o.threads ? o.threads : 1, pick = 0;
@@ -250,17 +271,18 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
         *stats = J->stats;
         stats->attempts = pick + 1;
         stats->seed_used = J->o.seed;
-        stats->fallback = pick >= first && pick < first + nfb;
+        stats->fallback = J->is_fallback;
         *err = J->err;
         st = J->st;
         if (st == SQ_ERR_SOLVER && nfb) {
-            /* every attempt failed: why the last of each group did */
+            /* every attempt failed: why the last of each group did (the
+             * default choices' attempt first - 1 sits at position first) */
             const int g1 = sq_mesh_genus(m) == 1;
             char msg[3 * sizeof err->msg];
             int len = snprintf(msg, sizeof msg,
                                "%s; the fallback (%sthe surface tree copied into Q triangulated, overlay; %u "
                                "attempts) failed too: %s",
-                               jobs[first - 1].err.msg, g1 ? "guided domain, " : "", nfb,
+                               jobs[first > 1 ? first : 0].err.msg, g1 ? "guided domain, " : "", nfb,
                                jobs[first + nfb - 1].err.msg);
             if (total > first + nfb && len > 0 && (size_t)len < sizeof msg)
                 snprintf(msg + len, sizeof msg - (size_t)len, "; then attempts %u to %u with the default choices: %s",

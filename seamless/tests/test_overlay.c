@@ -14,6 +14,7 @@
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -100,7 +101,7 @@ static uint32_t check_pair(uint32_t n)
     /* B's faces in two ranges in two threads: the same overlay, bit for bit */
     {
         sq_overlay Y;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, &Y, &err), SQ_OK);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, NULL, &Y, &err), SQ_OK);
         assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
         assert_memory_equal(Y.x_ha, X.x_ha, X.nx * sizeof *X.x_ha);
         assert_memory_equal(Y.x_hb, X.x_hb, X.nx * sizeof *X.x_hb);
@@ -111,6 +112,15 @@ static uint32_t check_pair(uint32_t n)
         assert_memory_equal(Y.tri, X.tri, 3 * (size_t)X.ntri * sizeof *X.tri);
         assert_memory_equal(Y.tri_fa, X.tri_fa, X.ntri * sizeof *X.tri_fa);
         assert_memory_equal(Y.tri_fb, X.tri_fb, X.ntri * sizeof *X.tri_fb);
+        sq_overlay_free(&Y);
+        /* cancelled (as by another attempt that passed): no overlay */
+        _Atomic int cancel = 1;
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, &cancel, &Y, &err), SQ_ERR_SOLVER);
+        assert_non_null(strstr(err.msg, "cancelled"));
+        assert_null(Y.tri);
+        atomic_store(&cancel, 0);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 1, &cancel, &Y, &err), SQ_OK);
+        assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
         sq_overlay_free(&Y);
     }
     /* the points: vertices, then crossings by their A parameter */
