@@ -1,6 +1,7 @@
 /* seamquad param: seamless, locally injective parametrization of a closed
  * triangle mesh with prescribed cones (seed 7-9; sq_param.h). */
 #include <errno.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -79,7 +80,9 @@ static void help(FILE *f)
             "                      core): the result is the same as with 1, the lowest\n"
             "                      attempt that passes, found sooner when attempts fail;\n"
             "                      memory grows with the attempts running; with 2 the\n"
-            "                      overlay and the simplification use two threads too\n"
+            "                      overlay and the simplification use two threads too,\n"
+            "                      and the final check runs beside the writing of the\n"
+            "                      outputs (renamed into place only once it passed)\n"
             "  --guide MODE        geometric guidance (seed 9.2): auto (default) is on for\n"
             "                      genus >= 2, off below. on: the cut surface is laid out\n"
             "                      in the unit disk; the cones are taken from its centre\n"
@@ -244,6 +247,25 @@ static long peak_rss_kb(void)
     struct rusage ru;
     if (getrusage(RUSAGE_SELF, &ru) != 0) return -1;
     return ru.ru_maxrss; /* kilobytes on Linux */
+}
+
+/* The independent check of the map, in a thread of its own beside the
+ * writing of the staged outputs (both only read P). */
+typedef struct verify_job {
+    const sq_param *P;
+    sq_status st;
+    sq_error err;
+    double t;
+} verify_job;
+
+static void *verify_thread(void *arg)
+{
+    verify_job *V = arg;
+    double t = sq_now();
+    sq_error_clear(&V->err);
+    V->st = sq_param_verify(V->P, SQ_PARAM_VERIFY_INTEGER, &V->err);
+    V->t = sq_now() - t;
+    return NULL;
 }
 
 static void print_json(const char *mesh_path, const char *cones_path, const sq_param_stats *s,
@@ -583,6 +605,10 @@ int sq_cmd_param(int argc, char **argv)
     int rc = SQ_EXIT_OK;
     const char *stage = "read";
     double t0 = sq_now(), t_read = 0, t_validate = 0, t_verify = 0, t_output = 0;
+    int beside = 0; /* the check runs in thread vth (below) */
+    pthread_t vth;
+    verify_job V;
+    memset(&V, 0, sizeof V);
 
     /* input, validated before any work */
     if (sq_read_mesh(mesh_path, &soup, &err)) goto fail;
@@ -607,12 +633,25 @@ int sq_cmd_param(int argc, char **argv)
     stage = "param";
     ps.t0 = ps.t_last = sq_now();
     if (sq_param_build(&mesh, val, &opt, &P, &stats, &err)) goto fail;
-    /* the library's own check ran inside; this one is independent */
-    stage = "verify";
-    double t2 = sq_now();
-    if (sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err)) goto fail;
-    t_verify = sq_now() - t2;
-    if (!quiet) on_progress(&ps, "verified", 1.0);
+    /* the library's own check ran inside; this one is independent. With
+     * two threads it runs beside the writing of the staged outputs (which
+     * are renamed only once it passed); with an output written directly
+     * (a special file), or with one thread, before it. */
+    beside = opt.threads > 1;
+    for (int i = 0; i < NOUT; i++)
+        if (out[i].path && sq_is_special_file(out[i].path)) beside = 0;
+    V.P = &P;
+    if (beside && pthread_create(&vth, NULL, verify_thread, &V) != 0) beside = 0;
+    if (!beside) {
+        stage = "verify";
+        verify_thread(&V);
+        t_verify = V.t;
+        if (V.st) {
+            err = V.err;
+            goto fail;
+        }
+        if (!quiet) on_progress(&ps, "verified", 1.0);
+    }
 
     /* outputs: staged, then renamed together */
     stage = "output";
@@ -643,6 +682,17 @@ int sq_cmd_param(int argc, char **argv)
         }
         out[i].written = 1;
     }
+    if (beside) {
+        pthread_join(vth, NULL);
+        beside = 0;
+        t_verify = V.t;
+        if (V.st) {
+            stage = "verify";
+            err = V.err;
+            goto fail;
+        }
+        if (!quiet) on_progress(&ps, "verified", 1.0);
+    }
     for (int i = 0; i < NOUT; i++) {
         if (!out[i].path || out[i].direct) continue;
         if (rename(out[i].stage, out[i].path) != 0) {
@@ -663,6 +713,7 @@ int sq_cmd_param(int argc, char **argv)
                    out);
     goto done;
 fail:
+    if (beside) pthread_join(vth, NULL); /* an output failed: the check still reads P */
     fprintf(stderr, "seamquad param: error (%s): %s\n", stage, err.msg);
     sq_param_cell cells[DIAG_CELLS];
     uint32_t ncells = 0;
