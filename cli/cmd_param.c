@@ -126,7 +126,10 @@ static void help(FILE *f)
             "                      qtri copies the surface tree into Q triangulated, with\n"
             "                      edge splits where paths need room (seed 9.4), always\n"
             "                      the same plane tree; Omega is then made of triangles\n"
-            "                      and the interior map is the overlay\n"
+            "                      and the interior map is the overlay; where the cut\n"
+            "                      walls a cone in (genus >= 2), the input's edges between\n"
+            "                      two cut vertices or cones are split at their midpoints\n"
+            "                      (Steiner vertices; --json \"wall_splits\")\n"
             "  --interior MODE     the interior map: cells cuts Omega into rectangles by\n"
             "                      chords replayed on the surface and maps each cell by\n"
             "                      Tutte (with --refine rounds); overlay maps the cut\n"
@@ -297,8 +300,8 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            s->surface_tree ? "true" : "false");
     printf("  \"interior\": \"%s\",\n  \"tree_pair\": %s,\n", s->overlay ? "overlay" : "cells",
            s->tree_pair ? "true" : "false");
-    printf("  \"tree_qtri\": %s,\n  \"qtri_verts\": %u,\n  \"qtri_steiner\": %u,\n", s->tree_qtri ? "true" : "false",
-           s->qtri_verts, s->qtri_steiner);
+    printf("  \"tree_qtri\": %s,\n  \"qtri_verts\": %u,\n  \"qtri_steiner\": %u,\n  \"wall_splits\": %u,\n",
+           s->tree_qtri ? "true" : "false", s->qtri_verts, s->qtri_steiner, s->wall_splits);
     printf("  \"fallback\": %s,\n", s->fallback ? "true" : "false");
     printf("  \"simplified\": %u,\n  \"faces_unsimplified\": %u,\n", s->simplified, s->faces_unsimplified);
     printf("  \"refine_rounds\": %u,\n  \"cells_halved\": %u,\n", s->rounds, s->cells_refined);

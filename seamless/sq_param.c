@@ -9,6 +9,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -58,6 +59,9 @@ void sq_param_free(sq_param *P)
 
 typedef struct ctx {
     const sq_mesh *m;
+    const uint8_t *given_cut; /* m->nh: the cut graph to use (m refined where */
+                              /* the cut walled a cone in), or NULL          */
+    int walled;               /* tree qtri: the surface tree left a cone out */
     const sq_param_options *opt; /* never NULL (sq_param_build fills defaults) */
     sq_error *err;
     sq_tsurf S;
@@ -587,7 +591,7 @@ static sq_status qtri_all_joined(ctx *c, const uint32_t *att, uint32_t n)
 {
     for (uint32_t j = 1; j < n; j++)
         if (att[j] == SQ_NONE)
-            return sq_error_set(c->err, SQ_ERR_SOLVER,
+            return c->walled = 1, sq_error_set(c->err, SQ_ERR_SOLVER,
                                 "tree qtri: the surface tree cannot join the cone at vertex %u (walled in by the cut)",
                                 c->step_vertex[j]);
     return SQ_OK;
@@ -705,7 +709,22 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     copt.seed = c->opt->seed;
     sq_cut_stats cst;
     memset(&cst, 0, sizeof cst);
-    if (genus >= 2)
+    if (c->given_cut) { /* the cut graph of the attempt on the unrefined mesh */
+        c->G.genus = genus;
+        c->G.he_cut = malloc(m->nh);
+        if (!c->G.he_cut) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            goto done;
+        }
+        memcpy(c->G.he_cut, c->given_cut, m->nh);
+        for (uint32_t h = 0; h < m->nh; h++)
+            if (c->G.he_cut[h] && h < m->he_twin[h]) {
+                const double *p = m->pos + 3 * (size_t)m->he_vert[h], *q = m->pos + 3 * (size_t)m->he_vert[m->he_twin[h]];
+                c->G.length += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+            }
+        st = sq_cut_boundary_word(m, &c->G, err);
+        if (st == SQ_OK) st = sq_cut_graph_check(m, cone, &c->G, err);
+    } else if (genus >= 2)
         st = sq_cut_graph_build(m, cone, &copt, &c->G, &cst, err);
     else
         st = sq_cut_graph_build_low_genus(m, cone, &copt, &c->G, &cst, err);
@@ -2923,9 +2942,9 @@ static sq_status overlay_after_cells(ctx *c, const before_cells *saved, const in
 /* One attempt with the options as given (opt and stats are never NULL here;
  * the cone set has passed its checks), with up to opt->refine rounds of
  * step 7c. */
-sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                              const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
-                              sq_error *err)
+static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                            const _Atomic int *cancel, const uint8_t *given_cut, sq_cut_graph *walled_G,
+                            sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     double t_start = sq_now();
     memset(stats, 0, sizeof *stats);
@@ -2933,7 +2952,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     sq_status st = SQ_OK;
     ctx c;
     memset(&c, 0, sizeof c);
-    c.m = m, c.opt = opt, c.err = err, c.cancel = cancel;
+    c.m = m, c.opt = opt, c.err = err, c.cancel = cancel, c.given_cut = given_cut;
     c.keep_flips = opt->allow_flips;
     c.root_step = c.root_surface = SQ_NONE;
     c.S_valence = valence;
@@ -3067,6 +3086,10 @@ finish:
 done:
     if (st) sq_param_free(out);
     sq_tsurf_free(&c.S);
+    if (st == SQ_ERR_SOLVER && c.walled && walled_G) { /* the caller refines around it */
+        *walled_G = c.G;
+        sq_cut_graph_init(&c.G);
+    }
     sq_cut_graph_free(&c.G);
     sq_pattern_free(&c.pcw);
     sq_omega_cells_free(&c.C);
@@ -3097,3 +3120,47 @@ done:
     return st;
 }
 
+/* Tree qtri, genus >= 2: where the surface tree cannot join a cone walled
+ * in by the cut graph (its vertices and the cones block the tree's
+ * paths), the same cut graph on the mesh with a midpoint on every other
+ * edge between two blocked vertices (sq_param_split_walls): the midpoints
+ * are free, so the tree passes between them. The map of that mesh is
+ * one of the input's: the midpoints lie on its edges and count as
+ * Steiner vertices, its faces name their input faces. */
+sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                              const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
+                              sq_error *err)
+{
+    sq_cut_graph G;
+    sq_cut_graph_init(&G);
+    const int refine = opt->tree == SQ_TREE_QTRI && sq_mesh_genus(m) >= 2;
+    sq_status st = build_once(m, valence, opt, cancel, NULL, refine ? &G : NULL, out, stats, err);
+    if (st != SQ_ERR_SOLVER || !G.he_cut) {
+        sq_cut_graph_free(&G);
+        return st;
+    }
+    sq_mesh m2;
+    int32_t *val2 = NULL;
+    uint32_t *fparent = NULL, nsplit = 0;
+    uint8_t *cut2 = NULL;
+    sq_error e2;
+    sq_error_clear(&e2);
+    sq_status s2 = sq_param_split_walls(m, valence, G.he_cut, &m2, &val2, &fparent, &cut2, &nsplit, &e2);
+    sq_cut_graph_free(&G);
+    if (s2 == SQ_ERR_NOMEM) st = s2, *err = e2;
+    if (s2 || !nsplit) return st; /* nothing to split, or the split mesh is invalid: the first failure */
+    st = build_once(&m2, val2, opt, cancel, cut2, NULL, out, stats, err);
+    stats->verts_in = m->nv, stats->faces_in = m->nf, stats->wall_splits = nsplit;
+    if (st == SQ_OK) {
+        /* back to the input: its vertices first, the midpoints added */
+        out->nv_input = m->nv;
+        for (uint32_t f = 0; f < out->nf; f++) out->tri_in[f] = fparent[out->tri_in[f]];
+    } else if (err && !strstr(err->msg, "cancelled")) {
+        char msg[2 * sizeof err->msg];
+        snprintf(msg, sizeof msg, "with %u edges split around cones walled in by the cut: %s", nsplit, err->msg);
+        sq_error_set(err, st, "%s", msg);
+    }
+    sq_mesh_free(&m2);
+    free(val2), free(fparent), free(cut2);
+    return st;
+}

@@ -205,6 +205,9 @@ typedef struct sq_param_stats {
                                             /* triangulated (triangles)       */
     uint32_t qtri_verts;                    /* its vertices, with the tree's  */
     uint32_t qtri_steiner;                  /* Steiner vertices among them    */
+    uint32_t wall_splits;                   /* tree qtri: input edges split   */
+                                            /* at their midpoints where the   */
+                                            /* cut walled a cone in (0: none) */
     int fallback;                           /* 1: the fallback made the map   */
                                             /* (SQ_FALLBACK_AUTO; tree qtri,  */
                                             /* so tree_qtri is set)           */

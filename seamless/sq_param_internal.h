@@ -62,6 +62,18 @@ int sq_param_pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin);
 sq_status sq_param_disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *twin, uint32_t first,
                               uint32_t n, const double *p3, double *xy, sq_error *err);
 
+/* Tree qtri where the cut walls a cone in (sq_param_walls.c): m with a
+ * midpoint on every edge that joins two blocked vertices (cones,
+ * valence[v] != 4, and the vertices of the cut he_cut) and is not cut,
+ * its faces split to match (two, three or four per face). m2's first
+ * m->nv vertices are m's; *val2 (m2->nv): the valences, 4 at the
+ * midpoints; *fparent (m2->nf): m's face holding each face; *cut2
+ * (m2->nh): the same cut. *nsplit: the edges split (0: none, and nothing
+ * allocated). The caller frees m2 and the three arrays. */
+sq_status sq_param_split_walls(const sq_mesh *m, const int32_t *valence, const uint8_t *he_cut, sq_mesh *m2,
+                               int32_t **val2, uint32_t **fparent, uint8_t **cut2, uint32_t *nsplit,
+                               sq_error *err);
+
 /* A growing list of triangles (3 n ids in t). */
 typedef struct sq_param_tri_list {
     uint32_t *t;

@@ -26,7 +26,9 @@
 
 #include <cmocka.h>
 
+#include "sq_cut_graph.h"
 #include "sq_param.h"
+#include "sq_param_internal.h"
 #include "sq_predicates.h"
 #include "sq_test_mesh.h"
 
@@ -297,6 +299,127 @@ static void test_fallback_threads(void **state)
     unload(&M);
 }
 
+static double tri_area(const double *p, const double *q, const double *r)
+{
+    double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/* Tree qtri where the cut walls a cone in (sq_param_split_walls):
+ * mpz/femur's cut graph (seed 1) walls a cone in (every seed does). The
+ * split mesh keeps the input's vertices and its genus, puts each new
+ * vertex at the exact midpoint of a non-cut edge between two blocked
+ * vertices, covers every input face by its own pieces, keeps the cut;
+ * after it no edge but a cut edge joins two blocked vertices. Then the
+ * whole attempt with --tree qtri passes there, the map named on the input
+ * (its vertices first, its faces), and the referee agrees. */
+static void test_split_walls(void **state)
+{
+    (void)state;
+    model M;
+    load(&M, "mpz/femur");
+    const sq_mesh *m = &M.m;
+    uint8_t *cone = calloc(m->nv, 1);
+    assert_non_null(cone);
+    for (uint32_t v = 0; v < m->nv; v++) cone[v] = M.val[v] != 4;
+    sq_cut_options copt;
+    sq_cut_options_default(&copt);
+    copt.seed = 1;
+    sq_cut_graph G;
+    sq_cut_graph_init(&G);
+    sq_error err = {0};
+    assert_int_equal(sq_cut_graph_build(m, cone, &copt, &G, NULL, &err), SQ_OK);
+    sq_mesh m2;
+    int32_t *val2;
+    uint32_t *fparent, n;
+    uint8_t *cut2;
+    assert_int_equal(sq_param_split_walls(m, M.val, G.he_cut, &m2, &val2, &fparent, &cut2, &n, &err), SQ_OK);
+    assert_true(n > 0);
+    assert_int_equal(m2.nv, m->nv + n);
+    assert_true(sq_mesh_euler(&m2) == sq_mesh_euler(m));
+    assert_memory_equal(m2.pos, m->pos, 3 * (size_t)m->nv * sizeof *m->pos);
+    uint8_t *blocked = calloc(m2.nv, 1);
+    assert_non_null(blocked);
+    for (uint32_t v = 0; v < m2.nv; v++) blocked[v] = val2[v] != 4;
+    uint32_t ncut = 0, ncut2 = 0;
+    for (uint32_t h = 0; h < m->nh; h++) ncut += G.he_cut[h];
+    for (uint32_t h = 0; h < m2.nh; h++) {
+        ncut2 += cut2[h];
+        if (cut2[h]) blocked[m2.he_vert[h]] = 1;
+    }
+    assert_int_equal(ncut2, ncut);
+    for (uint32_t v = 0; v < m->nv; v++) assert_int_equal(val2[v], M.val[v]);
+    /* every midpoint: free, exactly between two blocked input vertices
+     * that share a non-cut edge of the input */
+    for (uint32_t v = m->nv; v < m2.nv; v++) {
+        assert_int_equal(val2[v], 4);
+        assert_false(blocked[v]);
+        int found = 0;
+        uint32_t h0 = m2.v_he[v], h = h0;
+        do {
+            uint32_t a = m2.he_vert[m2.he_next[h]];
+            uint32_t g0 = m2.v_he[v], g = g0;
+            do {
+                uint32_t b = m2.he_vert[m2.he_next[g]];
+                if (a < b && a < m->nv && b < m->nv && blocked[a] && blocked[b]) {
+                    int mid = 1;
+                    for (int d = 0; d < 3; d++)
+                        mid &= m2.pos[3 * (size_t)v + d] == 0.5 * (m->pos[3 * (size_t)a + d] + m->pos[3 * (size_t)b + d]);
+                    uint32_t e0 = m->v_he[a], e = e0;
+                    do {
+                        if (mid && m->he_vert[m->he_next[e]] == b && !G.he_cut[e]) found = 1;
+                        e = m->he_next[m->he_twin[e]];
+                    } while (e != e0);
+                }
+                g = m2.he_next[m2.he_twin[g]];
+            } while (g != g0);
+            h = m2.he_next[m2.he_twin[h]];
+        } while (h != h0);
+        if (!found) fail_msg("midpoint %u: not between two blocked vertices of a non-cut input edge", v);
+    }
+    /* no edge but a cut edge between two blocked vertices */
+    for (uint32_t h = 0; h < m2.nh; h++)
+        if (blocked[m2.he_vert[h]] && blocked[m2.he_vert[m2.he_twin[h]]] && !cut2[h])
+            fail_msg("edge %u-%u joins two blocked vertices", m2.he_vert[h], m2.he_vert[m2.he_twin[h]]);
+    /* each input face covered by its pieces */
+    double *area = calloc(m->nf, sizeof *area);
+    assert_non_null(area);
+    for (uint32_t f = 0; f < m2.nf; f++) {
+        uint32_t h = m2.f_he[f];
+        assert_true(fparent[f] < m->nf);
+        area[fparent[f]] += tri_area(m2.pos + 3 * (size_t)m2.he_vert[h], m2.pos + 3 * (size_t)m2.he_vert[m2.he_next[h]],
+                                     m2.pos + 3 * (size_t)m2.he_vert[m2.he_next[m2.he_next[h]]]);
+    }
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h = m->f_he[f];
+        double a = tri_area(m->pos + 3 * (size_t)m->he_vert[h], m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
+                            m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]]);
+        assert_true(fabs(area[f] - a) <= 1e-12 * a);
+    }
+    free(area), free(blocked);
+    sq_mesh_free(&m2);
+    free(val2), free(fparent), free(cut2);
+    sq_cut_graph_free(&G);
+    free(cone);
+    /* the whole attempt: the fallback's choices at seed 1 */
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.tree = SQ_TREE_QTRI, opt.attempts = 1, opt.seed = 1;
+    sq_param P;
+    sq_param_init(&P);
+    sq_param_stats st;
+    if (sq_param_build(m, M.val, &opt, &P, &st, &err)) fail_msg("femur, tree qtri: %s", err.msg);
+    assert_int_equal(st.wall_splits, n);
+    assert_int_equal(P.nv_input, m->nv);
+    assert_memory_equal(P.pos, m->pos, 3 * (size_t)m->nv * sizeof *m->pos);
+    for (uint32_t f = 0; f < P.nf; f++) assert_true(P.tri_in[f] < m->nf);
+    assert_int_equal(sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err), SQ_OK);
+    assert_referee_passes(&M, &P, "femur (tree qtri, walls split)");
+    sq_param_free(&P);
+    unload(&M);
+}
+
 static const char *models[] = {"mpz/block",   "mpz/cup",        "mpz/elk",      "mpz/fandisk",
                                "mpz/femur",   "mpz/fertility_tri", "mpz/genus3", "mpz/helmet",
                                "mpz/holes3",  "mpz/homer",      "mpz/knot1",    "mpz/rocker_arm",
@@ -479,6 +602,7 @@ int main(void)
         cmocka_unit_test(test_cup_guided),
         cmocka_unit_test(test_threads),
         cmocka_unit_test(test_fallback_threads),
+        cmocka_unit_test(test_split_walls),
         cmocka_unit_test(test_all_models_compatible),
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_bad_cells),
