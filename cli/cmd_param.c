@@ -155,7 +155,7 @@ static void help(FILE *f)
             "                      attempt (beside it, with 2 threads), the others after\n"
             "                      the second; then the other default attempts; the\n"
             "                      lowest that passes is kept: mpz/elk and cid/elephant\n"
-            "                      pass so (12 to 15 s, up to 1.6 GB); off: none\n"
+            "                      pass so (12 to 14 s, up to 1.2 GB); off: none\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -361,6 +361,8 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
            (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
            (unsigned long long)(s->quads_unpadded + s->quads_added));
     printf("cone tree      %u edges in %u segments\n", s->tree_edges, s->tree_segments);
+    if (s->wall_splits)
+        printf("walls          %u input edges split at their midpoints: the cut walled a cone in\n", s->wall_splits);
     if (s->overlay)
         printf("interior map   overlay: the cut surface and Omega on one disk, their common "
                "refinement (step 7')\n");

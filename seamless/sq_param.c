@@ -719,8 +719,10 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
         memcpy(c->G.he_cut, c->given_cut, m->nh);
         for (uint32_t h = 0; h < m->nh; h++)
             if (c->G.he_cut[h] && h < m->he_twin[h]) {
-                const double *p = m->pos + 3 * (size_t)m->he_vert[h], *q = m->pos + 3 * (size_t)m->he_vert[m->he_twin[h]];
-                c->G.length += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+                const double *p = m->pos + 3 * (size_t)m->he_vert[h];
+                const double *q = m->pos + 3 * (size_t)m->he_vert[m->he_twin[h]];
+                double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+                c->G.length += sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             }
         st = sq_cut_boundary_word(m, &c->G, err);
         if (st == SQ_OK) st = sq_cut_graph_check(m, cone, &c->G, err);

@@ -47,7 +47,6 @@ typedef struct job {
     sq_param_options o;
     const char *msg; /* progress line once it is the lowest still running */
     int heavy;       /* the fallback's: nothing starts beside it          */
-    int is_fallback; /* one of the fallback's attempts                    */
     sq_param out;
     sq_param_stats stats;
     sq_error err;
@@ -246,7 +245,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     if (!jobs) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (attempts)");
     const sq_param_options f = fallback_options(m, &o);
     /* list position a: the default choices' attempt d or the fallback's
-     * attempt a - first (positions 1 and first .. first + nfb - 1) */
+     * attempt k (fallback_index) */
     for (uint32_t a = 0, d = 0; a < total; a++) {
         job *J = &jobs[a];
         const uint32_t k = fallback_index(a, first, nfb);
@@ -256,7 +255,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
             d++;
         } else {
             J->o = attempt_options(&f, k, 0);
-            J->heavy = J->is_fallback = 1;
+            J->heavy = 1;
             J->msg = k == 0 ? "fallback: the surface tree copied into Q triangulated, overlay"
                             : retry_message(0, k);
         }
@@ -271,7 +270,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
         *stats = J->stats;
         stats->attempts = pick + 1;
         stats->seed_used = J->o.seed;
-        stats->fallback = J->is_fallback;
+        stats->fallback = J->heavy;
         *err = J->err;
         st = J->st;
         if (st == SQ_ERR_SOLVER && nfb) {
