@@ -1144,10 +1144,11 @@ static void *genus1_worker(void *arg)
 
 static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_domain_options *dopt)
 {
-    /* the six gluings of the meta-2-gon, two at a time (each a CHOLMOD
-     * layout of Q, the five others after a domain build); the same choice
-     * as one after another: the current domain first, then the first best
-     * in offset order; the first error in that order */
+    /* the six gluings of the meta-2-gon, two at a time where the caller
+     * allows two threads (each a CHOLMOD layout of Q, the five others
+     * after a domain build); the same choice as one after another: the
+     * current domain first, then the first best in offset order; the
+     * first error in that order */
     genus1_jobs *J = calloc(1, sizeof *J);
     if (!J) return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     const uint32_t skip = c->D->offset;
@@ -1156,7 +1157,7 @@ static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_
     atomic_init(&J->next, 0);
     c->glue.chosen[0] = SQ_NONE; /* rebuild_at's glue edges from step 1 on */
     pthread_t th;
-    int threaded = pthread_create(&th, NULL, genus1_worker, J) == 0;
+    int threaded = c->opt->threads > 1 && pthread_create(&th, NULL, genus1_worker, J) == 0;
     genus1_worker(J);
     if (threaded) pthread_join(th, NULL);
     sq_status st = J->st[skip];
