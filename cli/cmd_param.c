@@ -154,8 +154,13 @@ static void help(FILE *f)
             "                      most 10,000,000): the first after the first default\n"
             "                      attempt (beside it, with 2 threads), the others after\n"
             "                      the second; then the other default attempts; the\n"
-            "                      lowest that passes is kept: mpz/elk and cid/elephant\n"
-            "                      pass so (12 to 14 s, up to 1.2 GB); off: none\n"
+            "                      lowest that passes is kept, except that where the\n"
+            "                      first default attempt passes with the cells' map, the\n"
+            "                      fallback's first, within 50 crossings per input face,\n"
+            "                      replaces it (far less distorted: --json\n"
+            "                      \"replaced_cells\"); mpz/elk and cid/elephant pass\n"
+            "                      through the fallback (11 to 14 s, up to 1.2 GB); off:\n"
+            "                      none\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
             "  --quiet             no progress lines on stderr\n"
@@ -302,7 +307,8 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            s->tree_pair ? "true" : "false");
     printf("  \"tree_qtri\": %s,\n  \"qtri_verts\": %u,\n  \"qtri_steiner\": %u,\n  \"wall_splits\": %u,\n",
            s->tree_qtri ? "true" : "false", s->qtri_verts, s->qtri_steiner, s->wall_splits);
-    printf("  \"fallback\": %s,\n", s->fallback ? "true" : "false");
+    printf("  \"fallback\": %s,\n  \"replaced_cells\": %s,\n  \"crossings\": %llu,\n", s->fallback ? "true" : "false",
+           s->replaced_cells ? "true" : "false", (unsigned long long)s->crossings);
     printf("  \"simplified\": %u,\n  \"faces_unsimplified\": %u,\n", s->simplified, s->faces_unsimplified);
     printf("  \"refine_rounds\": %u,\n  \"cells_halved\": %u,\n", s->rounds, s->cells_refined);
     printf("  \"tree_edges\": %u,\n  \"tree_segments\": %u,\n  \"chords\": %u,\n  \"cells\": %u,\n"
@@ -372,7 +378,10 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
     if (s->rounds)
         printf("refinement     %u rounds: %u cells with bad triangles halved (step 7c)\n", s->rounds,
                s->cells_refined);
-    if (s->fallback)
+    if (s->fallback && s->replaced_cells)
+        printf("fallback       the surface tree copied into Q triangulated, overlay: its map replaces the cells' map of "
+               "the default choices (far less distorted)\n");
+    else if (s->fallback)
         printf("fallback       the default choices failed; the surface tree copied into Q triangulated, overlay\n");
     if (s->faces_unsimplified)
         printf("simplified     %u added vertices removed: %u faces -> %u\n", s->simplified,

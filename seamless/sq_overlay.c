@@ -51,6 +51,7 @@ typedef struct ov {
     sq_error err;
     uint32_t stop_g; /* over the budget after face stop_g (else SQ_NONE)  */
     const _Atomic int *cancel; /* set: stop (NULL: never)                 */
+    const _Atomic uint64_t *limit; /* a budget lowered later (0: none)    */
 } ov;
 
 static inline uint32_t nxt(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
@@ -361,6 +362,16 @@ static uint32_t bad_faces(const double *xy, const sq_overlay_mesh *M)
     return bad;
 }
 
+/* Whether this range alone has more crossings than c->limit (set: st). */
+static int over_limit(ov *c, sq_status *st)
+{
+    uint64_t L = atomic_load(c->limit);
+    if (!L || c->X->nx <= L) return 0;
+    *st = sq_error_set(&c->err, SQ_ERR_SOLVER, "overlay: more than %llu crossings (a budget set while it ran)",
+                       (unsigned long long)L);
+    return 1;
+}
+
 /* Walks B's faces [c->g0, c->g1) in order: each from a face of A holding
  * its interior vertex, over the faces of A it meets. c->st, c->err: the
  * first failure; c->stop_g: the face after which this range alone had
@@ -385,6 +396,7 @@ static void walk_range(ov *c)
             st = sq_error_set(err, SQ_ERR_SOLVER, "overlay: cancelled");
             goto done;
         }
+        if (c->limit && g % 64 == 0 && over_limit(c, &st)) goto done;
         const uint32_t *t = B->tri + 3 * (size_t)g;
         uint32_t b = SQ_NONE;
         for (int k = 0; k < 3 && b == SQ_NONE; k++)
@@ -444,6 +456,7 @@ static void walk_range(ov *c)
             goto done;
         }
     }
+    if (c->limit && c->stop_g == SQ_NONE && over_limit(c, &st)) goto done;
 done:
     free(mark);
     free(queue);
@@ -469,7 +482,7 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
                            const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                            sq_overlay *out, sq_error *err)
 {
-    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 1, NULL, out, err);
+    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 1, NULL, NULL, out, err);
 }
 
 /* Two ranges of B's faces, [0, nf/2) and [nf/2, nf), each walked with its
@@ -484,7 +497,8 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * crossings too), and the merged count must not exceed it either. */
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
-                                   uint32_t threads, const _Atomic int *cancel, sq_overlay *out, sq_error *err)
+                                   uint32_t threads, const _Atomic int *cancel, const _Atomic uint64_t *limit,
+                                   sq_overlay *out, sq_error *err)
 {
     sq_overlay_init(out);
     if (!xy || !A || !B || nbnd < 3 || na < nbnd || nv < na || !A->nf || !B->nf)
@@ -504,7 +518,7 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
         c[r].rng = 0x2545F4914F6CDD1Dull;
         c[r].max_crossings = max_crossings;
         c[r].stop_g = SQ_NONE;
-        c[r].cancel = cancel;
+        c[r].cancel = cancel, c[r].limit = limit;
     }
     c[0].X = out, c[1].X = &X1;
     c[0].g0 = 0, c[0].g1 = c[1].g0 = B->nf / 2, c[1].g1 = B->nf;

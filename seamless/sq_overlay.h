@@ -78,10 +78,14 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * walk over B's faces in order. The crossing budget applies to each range
  * alone (the second counting the crossings it shares with the first) and
  * to the whole. cancel (may be NULL): once it is set (by another thread),
- * the walk stops within 64 of B's faces with SQ_ERR_SOLVER "cancelled". */
+ * the walk stops within 64 of B's faces with SQ_ERR_SOLVER "cancelled".
+ * limit (may be NULL): a crossing budget another thread may lower while
+ * the walk runs (0: none); read every 64 of B's faces, SQ_ERR_SOLVER once
+ * a range alone has more crossings. */
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
-                                   uint32_t threads, const _Atomic int *cancel, sq_overlay *out, sq_error *err);
+                                   uint32_t threads, const _Atomic int *cancel, const _Atomic uint64_t *limit,
+                                   sq_overlay *out, sq_error *err);
 
 #ifdef __cplusplus
 }

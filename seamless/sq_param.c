@@ -101,6 +101,9 @@ typedef struct ctx {
                          /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
                          /* when unguided                                  */
     const _Atomic int *cancel;  /* another attempt passed: stop (may be NULL)  */
+    const _Atomic uint64_t *limit; /* the overlay's crossings allowed, set by  */
+                                   /* another attempt while this one runs (0: */
+                                   /* none; may be NULL)                      */
     uint32_t *h_uv;             /* S.nh: corner_uv of every halfedge once the */
                                 /* interior map of a round is done; else NULL */
     uint32_t *face_limit;       /* O->cut.nf or NULL: cell size limits per quad */
@@ -2753,9 +2756,10 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
                                   c->opt->max_crossings ? c->opt->max_crossings
                                   : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
                                                         : steiner_budget(c),
-                                  c->opt->threads ? c->opt->threads : 1, c->cancel, &X, err);
+                                  c->opt->threads ? c->opt->threads : 1, c->cancel, c->limit, &X, err);
     if (cancelled(c)) st = stop_if_cancelled(c);
     if (st) goto done;
+    stats->crossings = X.nx;
     /* the output: S's vertices, then B's interior vertices, then the crossings */
     uint32_t nout = S->nv + (nv - na) + X.nx;
     P->nv = nout, P->nf = X.ntri, P->nv_input = S->nv_input, P->nuv = nv + X.nx;
@@ -2946,8 +2950,8 @@ static sq_status overlay_after_cells(ctx *c, const before_cells *saved, const in
  * the cone set has passed its checks), with up to opt->refine rounds of
  * step 7c. */
 static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                            const _Atomic int *cancel, const uint8_t *given_cut, sq_cut_graph *walled_G,
-                            sq_param *out, sq_param_stats *stats, sq_error *err)
+                            const _Atomic int *cancel, const _Atomic uint64_t *limit, const uint8_t *given_cut,
+                            sq_cut_graph *walled_G, sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     double t_start = sq_now();
     memset(stats, 0, sizeof *stats);
@@ -2955,7 +2959,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     sq_status st = SQ_OK;
     ctx c;
     memset(&c, 0, sizeof c);
-    c.m = m, c.opt = opt, c.err = err, c.cancel = cancel, c.given_cut = given_cut;
+    c.m = m, c.opt = opt, c.err = err, c.cancel = cancel, c.limit = limit, c.given_cut = given_cut;
     c.keep_flips = opt->allow_flips;
     c.root_step = c.root_surface = SQ_NONE;
     c.S_valence = valence;
@@ -3131,13 +3135,13 @@ done:
  * one of the input's: the midpoints lie on its edges and count as
  * Steiner vertices, its faces name their input faces. */
 sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                              const _Atomic int *cancel, sq_param *out, sq_param_stats *stats,
-                              sq_error *err)
+                              const _Atomic int *cancel, const _Atomic uint64_t *limit, sq_param *out,
+                              sq_param_stats *stats, sq_error *err)
 {
     sq_cut_graph G;
     sq_cut_graph_init(&G);
     const int refine = opt->tree == SQ_TREE_QTRI && sq_mesh_genus(m) >= 2;
-    sq_status st = build_once(m, valence, opt, cancel, NULL, refine ? &G : NULL, out, stats, err);
+    sq_status st = build_once(m, valence, opt, cancel, limit, NULL, refine ? &G : NULL, out, stats, err);
     if (st != SQ_ERR_SOLVER || !G.he_cut) {
         sq_cut_graph_free(&G);
         return st;
@@ -3152,7 +3156,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     sq_cut_graph_free(&G);
     if (s2 == SQ_ERR_NOMEM) st = s2, *err = e2;
     if (s2 || !nsplit) return st; /* nothing to split, or the split mesh is invalid: the first failure */
-    st = build_once(&m2, val2, opt, cancel, cut2, NULL, out, stats, err);
+    st = build_once(&m2, val2, opt, cancel, limit, cut2, NULL, out, stats, err);
     stats->verts_in = m->nv, stats->faces_in = m->nf, stats->wall_splits = nsplit;
     if (st == SQ_OK) {
         /* back to the input: its vertices first, the midpoints added */

@@ -103,9 +103,13 @@ typedef struct sq_param_options {
      * attempts: the first after the default choices' first attempt (so
      * with two threads beside it), the others after the first
      * SQ_FALLBACK_AFTER (2) default attempts, then the default choices'
-     * others; the lowest that passes is the result. It passes mpz/elk and
-     * cid/elephant, which nothing else does, in 12 to 15 s
-     * (docs/param.md). SQ_FALLBACK_OFF: none. */
+     * others; the lowest that passes is the result, except that where the
+     * first default attempt passes with the cells' map (not the overlay's),
+     * the fallback's first attempt goes on, with a crossing budget of
+     * SQ_REPLACE_PER_FACE (50) per input face, and its map, far less
+     * distorted, replaces the cells' where it passes (replaced_cells). It
+     * passes mpz/elk and cid/elephant, which nothing else does, in 11 to
+     * 14 s (docs/param.md). SQ_FALLBACK_OFF: none. */
     int fallback;
 } sq_param_options;
 
@@ -119,6 +123,7 @@ enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
 #define SQ_FALLBACK_ATTEMPTS 4
 #define SQ_FALLBACK_AFTER 2
 #define SQ_FALLBACK_PER_FACE 400u
+#define SQ_REPLACE_PER_FACE 50u
 #define SQ_QTRI_MAX_CROSSINGS 10000000u
 
 #define SQ_PARAM_REFINE 8
@@ -205,6 +210,11 @@ typedef struct sq_param_stats {
                                             /* triangulated (triangles)       */
     uint32_t qtri_verts;                    /* its vertices, with the tree's  */
     uint32_t qtri_steiner;                  /* Steiner vertices among them    */
+    uint64_t crossings;                     /* the overlay's (step 7')        */
+    int replaced_cells;                     /* 1: the default choices' first  */
+                                            /* attempt passed with the cells' */
+                                            /* map; the fallback's first one, */
+                                            /* far less distorted, replaced it */
     uint32_t wall_splits;                   /* tree qtri: input edges split   */
                                             /* at their midpoints where the   */
                                             /* cut walled a cone in (0: none) */

@@ -101,7 +101,7 @@ static uint32_t check_pair(uint32_t n)
     /* B's faces in two ranges in two threads: the same overlay, bit for bit */
     {
         sq_overlay Y;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, NULL, &Y, &err), SQ_OK);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, NULL, NULL, &Y, &err), SQ_OK);
         assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
         assert_memory_equal(Y.x_ha, X.x_ha, X.nx * sizeof *X.x_ha);
         assert_memory_equal(Y.x_hb, X.x_hb, X.nx * sizeof *X.x_hb);
@@ -115,13 +115,26 @@ static uint32_t check_pair(uint32_t n)
         sq_overlay_free(&Y);
         /* cancelled (as by another attempt that passed): no overlay */
         _Atomic int cancel = 1;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, &cancel, &Y, &err), SQ_ERR_SOLVER);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, &cancel, NULL, &Y, &err), SQ_ERR_SOLVER);
         assert_non_null(strstr(err.msg, "cancelled"));
         assert_null(Y.tri);
         atomic_store(&cancel, 0);
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 1, &cancel, &Y, &err), SQ_OK);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 1, &cancel, NULL, &Y, &err), SQ_OK);
         assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
         sq_overlay_free(&Y);
+        /* a budget set while it runs: below the crossings, it stops; at
+         * them, the same overlay */
+        _Atomic uint64_t limit = X.nx;
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 2, NULL, &limit, &Y, &err), SQ_OK);
+        assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
+        sq_overlay_free(&Y);
+        if (X.nx >= 3) { /* one range has more than a third */
+            atomic_store(&limit, X.nx / 3);
+            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 1, NULL, &limit, &Y, &err),
+                             SQ_ERR_SOLVER);
+            assert_non_null(strstr(err.msg, "crossings"));
+            assert_null(Y.tri);
+        }
     }
     /* the points: vertices, then crossings by their A parameter */
     double *p = malloc(2 * ((size_t)nv + X.nx) * sizeof *p);

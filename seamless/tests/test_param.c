@@ -420,6 +420,45 @@ static void test_split_walls(void **state)
     unload(&M);
 }
 
+/* A cells map of the first default attempt yields to the fallback's first
+ * (sq_param_attempts.c, replaces_cells): mpz/sculpt passes at attempt 1
+ * with the cells' map (mean conformal ratio 2.2e10) and at the fallback's
+ * first within 50 crossings per input face (32): that map is the result,
+ * the same with 1 and 2 threads, and the referee passes it; without the
+ * fallback, the cells' map. */
+static void test_replaces_cells(void **state)
+{
+    (void)state;
+    model M;
+    load(&M, "mpz/sculpt");
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    sq_param P1, P;
+    sq_param_init(&P1);
+    sq_param_stats s1, st;
+    sq_error err = {0};
+    opt.threads = 1;
+    if (sq_param_build(&M.m, M.val, &opt, &P1, &s1, &err)) fail_msg("sculpt, 1 thread: %s", err.msg);
+    assert_true(s1.attempts == 2 && s1.fallback && s1.replaced_cells && s1.tree_qtri && s1.overlay);
+    assert_true(s1.crossings <= (uint64_t)SQ_REPLACE_PER_FACE * M.m.nf);
+    assert_true(s1.conformal_mean < 1000);
+    opt.threads = 2;
+    sq_param_init(&P);
+    if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("sculpt, 2 threads: %s", err.msg);
+    assert_true(st.attempts == 2 && st.replaced_cells);
+    assert_same_map(&P, &P1);
+    assert_referee_passes(&M, &P, "sculpt (the fallback's map replacing the cells')");
+    sq_param_free(&P);
+    sq_param_free(&P1);
+    opt.fallback = SQ_FALLBACK_OFF;
+    sq_param_init(&P);
+    if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("sculpt, no fallback: %s", err.msg);
+    assert_true(st.attempts == 1 && !st.fallback && !st.replaced_cells && !st.overlay);
+    assert_true(st.conformal_mean > 1e6);
+    sq_param_free(&P);
+    unload(&M);
+}
+
 static const char *models[] = {"mpz/block",   "mpz/cup",        "mpz/elk",      "mpz/fandisk",
                                "mpz/femur",   "mpz/fertility_tri", "mpz/genus3", "mpz/helmet",
                                "mpz/holes3",  "mpz/homer",      "mpz/knot1",    "mpz/rocker_arm",
@@ -603,6 +642,7 @@ int main(void)
         cmocka_unit_test(test_threads),
         cmocka_unit_test(test_fallback_threads),
         cmocka_unit_test(test_split_walls),
+        cmocka_unit_test(test_replaces_cells),
         cmocka_unit_test(test_all_models_compatible),
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_bad_cells),

@@ -111,6 +111,7 @@ static void check_model(const char *rel, int want_overlay)
     sq_param_options opt;
     sq_param_options_default(&opt);
     opt.attempts = 4;
+    opt.fallback = SQ_FALLBACK_OFF; /* sculpt: the cells' map (else the fallback's replaces it) */
     opt.simplify = SQ_SIMPLIFY_OFF;
     if (sq_param_build(&m, val, &opt, &A, &sa, &err)) fail_msg("%s, unsimplified: %s", rel, err.msg);
     opt.simplify = SQ_SIMPLIFY_ON;
