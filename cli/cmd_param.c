@@ -276,6 +276,15 @@ static void *verify_thread(void *arg)
     return NULL;
 }
 
+/* The check's outcome, wherever it ran: its time into *t, its failure
+ * into err */
+static sq_status verify_outcome(const verify_job *V, double *t, sq_error *err)
+{
+    *t = V->t;
+    if (V->st) *err = V->err;
+    return V->st;
+}
+
 static void print_json(const char *mesh_path, const char *cones_path, const sq_param_stats *s,
                        const uint32_t *hist, double t_read, double t_validate, double t_verify,
                        double t_output, double t_total, const output *out)
@@ -659,11 +668,7 @@ int sq_cmd_param(int argc, char **argv)
     if (!beside) {
         stage = "verify";
         verify_thread(&V);
-        t_verify = V.t;
-        if (V.st) {
-            err = V.err;
-            goto fail;
-        }
+        if (verify_outcome(&V, &t_verify, &err)) goto fail;
         if (!quiet) on_progress(&ps, "verified", 1.0);
     }
 
@@ -699,12 +704,9 @@ int sq_cmd_param(int argc, char **argv)
     if (beside) {
         pthread_join(vth, NULL);
         beside = 0;
-        t_verify = V.t;
-        if (V.st) {
-            stage = "verify";
-            err = V.err;
-            goto fail;
-        }
+        stage = "verify";
+        if (verify_outcome(&V, &t_verify, &err)) goto fail;
+        stage = "output";
         if (!quiet) on_progress(&ps, "verified", 1.0);
     }
     for (int i = 0; i < NOUT; i++) {

@@ -362,14 +362,12 @@ static uint32_t bad_faces(const double *xy, const sq_overlay_mesh *M)
     return bad;
 }
 
-/* Whether this range alone has more crossings than c->limit (set: st). */
-static int over_limit(ov *c, sq_status *st)
+/* The crossing budget: max_crossings, or *limit where that is lower
+ * (another thread may lower it while the walk runs; 0: no budget) */
+static uint64_t budget_now(uint64_t max_crossings, const _Atomic uint64_t *limit)
 {
-    uint64_t L = atomic_load(c->limit);
-    if (!L || c->X->nx <= L) return 0;
-    *st = sq_error_set(&c->err, SQ_ERR_SOLVER, "overlay: more than %llu crossings (a budget set while it ran)",
-                       (unsigned long long)L);
-    return 1;
+    uint64_t L = limit ? atomic_load(limit) : 0;
+    return L && (!max_crossings || L < max_crossings) ? L : max_crossings;
 }
 
 /* Walks B's faces [c->g0, c->g1) in order: each from a face of A holding
@@ -396,7 +394,7 @@ static void walk_range(ov *c)
             st = sq_error_set(err, SQ_ERR_SOLVER, "overlay: cancelled");
             goto done;
         }
-        if (c->limit && g % 64 == 0 && over_limit(c, &st)) goto done;
+        if (g == c->g0 || g % 64 == 0) c->max_crossings = budget_now(c->max_crossings, c->limit);
         const uint32_t *t = B->tri + 3 * (size_t)g;
         uint32_t b = SQ_NONE;
         for (int k = 0; k < 3 && b == SQ_NONE; k++)
@@ -456,7 +454,6 @@ static void walk_range(ov *c)
             goto done;
         }
     }
-    if (c->limit && c->stop_g == SQ_NONE && over_limit(c, &st)) goto done;
 done:
     free(mark);
     free(queue);
@@ -549,8 +546,11 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
         }
         if (c[r].stop_g != SQ_NONE) break;
     }
-    /* range 1's crossings: range 0's id, or the next */
+    /* range 1's crossings: range 0's id, or the next; the budget as it is
+     * now (limit may have been lowered after range 0's last look) */
+    max_crossings = budget_now(max_crossings, limit);
     uint32_t n0 = out->nx, stop_g = c[0].stop_g;
+    if (stop_g == SQ_NONE && max_crossings && n0 > max_crossings) stop_g = c[0].g1 - 1;
     map = malloc(((size_t)X1.nx + 1) * sizeof *map);
     if (!map) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");

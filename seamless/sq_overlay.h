@@ -80,8 +80,8 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * to the whole. cancel (may be NULL): once it is set (by another thread),
  * the walk stops within 64 of B's faces with SQ_ERR_SOLVER "cancelled".
  * limit (may be NULL): a crossing budget another thread may lower while
- * the walk runs (0: none); read every 64 of B's faces, SQ_ERR_SOLVER once
- * a range alone has more crossings. */
+ * the walk runs (0: none); where it is below max_crossings it takes its
+ * place (read every 64 of B's faces and once more at the end). */
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                                    uint32_t threads, const _Atomic int *cancel, const _Atomic uint64_t *limit,

@@ -59,8 +59,9 @@ void sq_param_free(sq_param *P)
 
 typedef struct ctx {
     const sq_mesh *m;
-    const uint8_t *given_cut; /* m->nh: the cut graph to use (m refined where */
-                              /* the cut walled a cone in), or NULL          */
+    sq_cut_graph *given_G;    /* the cut graph to use (its he_cut on m, m     */
+                              /* refined where it walled a cone in; taken    */
+                              /* over), or NULL                              */
     int walled;               /* tree qtri: the surface tree left a cone out */
     const sq_param_options *opt; /* never NULL (sq_param_build fills defaults) */
     sq_error *err;
@@ -712,22 +713,11 @@ static sq_status build_domain(ctx *c, const int32_t *valence, sq_param_stats *st
     copt.seed = c->opt->seed;
     sq_cut_stats cst;
     memset(&cst, 0, sizeof cst);
-    if (c->given_cut) { /* the cut graph of the attempt on the unrefined mesh */
-        c->G.genus = genus;
-        c->G.he_cut = malloc(m->nh);
-        if (!c->G.he_cut) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            goto done;
-        }
-        memcpy(c->G.he_cut, c->given_cut, m->nh);
-        for (uint32_t h = 0; h < m->nh; h++)
-            if (c->G.he_cut[h] && h < m->he_twin[h]) {
-                const double *p = m->pos + 3 * (size_t)m->he_vert[h];
-                const double *q = m->pos + 3 * (size_t)m->he_vert[m->he_twin[h]];
-                double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
-                c->G.length += sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            }
-        st = sq_cut_boundary_word(m, &c->G, err);
+    if (c->given_G) { /* the cut graph of the attempt on the unrefined mesh */
+        sq_cut_graph_free(&c->G);
+        c->G = *c->given_G;
+        sq_cut_graph_init(c->given_G);
+        st = sq_cut_boundary_word(m, &c->G, err); /* its sides on m's halfedges */
         if (st == SQ_OK) st = sq_cut_graph_check(m, cone, &c->G, err);
     } else if (genus >= 2)
         st = sq_cut_graph_build(m, cone, &copt, &c->G, &cst, err);
@@ -2950,7 +2940,7 @@ static sq_status overlay_after_cells(ctx *c, const before_cells *saved, const in
  * the cone set has passed its checks), with up to opt->refine rounds of
  * step 7c. */
 static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                            const _Atomic int *cancel, const _Atomic uint64_t *limit, const uint8_t *given_cut,
+                            const _Atomic int *cancel, const _Atomic uint64_t *limit, sq_cut_graph *given_G,
                             sq_cut_graph *walled_G, sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     double t_start = sq_now();
@@ -2959,7 +2949,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     sq_status st = SQ_OK;
     ctx c;
     memset(&c, 0, sizeof c);
-    c.m = m, c.opt = opt, c.err = err, c.cancel = cancel, c.limit = limit, c.given_cut = given_cut;
+    c.m = m, c.opt = opt, c.err = err, c.cancel = cancel, c.limit = limit, c.given_G = given_G;
     c.keep_flips = opt->allow_flips;
     c.root_step = c.root_surface = SQ_NONE;
     c.S_valence = valence;
@@ -3153,21 +3143,28 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     sq_error e2;
     sq_error_clear(&e2);
     sq_status s2 = sq_param_split_walls(m, valence, G.he_cut, &m2, &val2, &fparent, &cut2, &nsplit, &e2);
-    sq_cut_graph_free(&G);
     if (s2 == SQ_ERR_NOMEM) st = s2, *err = e2;
-    if (s2 || !nsplit) return st; /* nothing to split, or the split mesh is invalid: the first failure */
-    st = build_once(&m2, val2, opt, cancel, limit, cut2, NULL, out, stats, err);
+    if (s2 || !nsplit) { /* nothing to split, or the split mesh is invalid: the first failure */
+        sq_cut_graph_free(&G);
+        return st;
+    }
+    /* the same cut (its edges were not split; length, genus and choices
+     * kept), on m2's halfedges */
+    free(G.he_cut);
+    G.he_cut = cut2;
+    st = build_once(&m2, val2, opt, cancel, limit, &G, NULL, out, stats, err);
+    sq_cut_graph_free(&G);
     stats->verts_in = m->nv, stats->faces_in = m->nf, stats->wall_splits = nsplit;
     if (st == SQ_OK) {
         /* back to the input: its vertices first, the midpoints added */
         out->nv_input = m->nv;
         for (uint32_t f = 0; f < out->nf; f++) out->tri_in[f] = fparent[out->tri_in[f]];
-    } else if (err && !strstr(err->msg, "cancelled")) {
+    } else if (err && !(cancel && atomic_load(cancel))) {
         char msg[2 * sizeof err->msg];
         snprintf(msg, sizeof msg, "with %u edges split around cones walled in by the cut: %s", nsplit, err->msg);
         sq_error_set(err, st, "%s", msg);
     }
     sq_mesh_free(&m2);
-    free(val2), free(fparent), free(cut2);
+    free(val2), free(fparent);
     return st;
 }

@@ -86,14 +86,14 @@ static void job_progress(void *ctx, const char *stage, double f)
     pthread_mutex_unlock(&P->mu);
 }
 
-/* Whether attempt b's map replaces attempt a's (a = 0, b = 1 only): a
- * passed with the cells' map (no overlay), b is the fallback's first and
- * passes, if it has ended, within replace_limit crossings. Before b ends:
- * whether it may still. */
-static int replaces_cells(const pool *P, uint32_t a, uint32_t b)
+/* Whether the fallback's first attempt (list position 1) replaces the
+ * first's: that passed with the cells' map (no overlay), and the
+ * fallback's passes, if it has ended, within replace_limit crossings.
+ * Before it ends: whether it may still. */
+static int replaces_cells(const pool *P)
 {
-    const job *A = &P->jobs[a], *B = &P->jobs[b];
-    if (!P->replace_limit || a != 0 || b != 1 || b >= P->n || !B->heavy) return 0;
+    const job *A = &P->jobs[0], *B = &P->jobs[1];
+    if (!P->replace_limit || P->n < 2 || !B->heavy) return 0;
     if (!A->done || A->st != SQ_OK || A->stats.overlay) return 0;
     return !B->done || (B->st == SQ_OK && B->stats.crossings <= P->replace_limit);
 }
@@ -121,7 +121,7 @@ static void *worker(void *arg)
             /* a cells map of the first attempt may yield to the fallback's
              * first (replaces_cells): that one goes on (or starts), with
              * the budget of such a replacement */
-            const int provisional = replaces_cells(P, 0, 1);
+            const int provisional = replaces_cells(P);
             P->ended = provisional ? 1 : a;
             if (provisional) atomic_store(&P->jobs[1].limit, P->replace_limit);
             for (uint32_t b = P->ended + 1; b < P->n; b++) atomic_store(&P->jobs[b].cancel, 1);
@@ -141,9 +141,10 @@ static void *worker(void *arg)
 }
 
 /* Runs the attempts jobs[0, n) (their options, messages and heaviness
- * set) on `threads` threads in order, as described at the top, and
- * returns the index of the result: the lowest that ended without
- * SQ_ERR_SOLVER, else the last. */
+ * set) on `threads` threads in order, as described at the top; *pick: the
+ * result, the lowest that ended without SQ_ERR_SOLVER (else the last),
+ * or the fallback's first where it replaces the first's cells map
+ * (replace_limit crossings; 0: never). */
 static sq_status run_jobs(const sq_mesh *m, const int32_t *valence, const sq_param_options *o, job *jobs,
                           uint32_t n, uint32_t threads, uint64_t replace_limit, uint32_t *pick, sq_error *err)
 {
@@ -186,7 +187,7 @@ static sq_status run_jobs(const sq_mesh *m, const int32_t *valence, const sq_par
             lo = a;
             break;
         }
-    if (lo == 0 && n > 1 && jobs[1].done && replaces_cells(&P, 0, 1)) lo = 1;
+    if (lo == 0 && replaces_cells(&P) && jobs[1].done) lo = 1;
     *pick = lo;
     return SQ_OK;
 }
