@@ -63,6 +63,7 @@ typedef struct ctx {
                               /* refined where it walled a cone in; taken    */
                               /* over), or NULL                              */
     int walled;               /* tree qtri: the surface tree left a cone out */
+    uint32_t fan_vertices;    /* the overlay's graded fans (sq_param_fans.c) */
     const sq_param_options *opt; /* never NULL (sq_param_build fills defaults) */
     sq_error *err;
     sq_tsurf S;
@@ -2578,11 +2579,15 @@ static sq_status assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, 
  * Omega). Ids: [0, nbl) the boundary loop from the copy of Omega's first
  * corner, [nbl, na) the vertices off the cut. */
 typedef struct surface_disk {
-    uint32_t nbl, na;
+    uint32_t nbl, na; /* [nbl, ns) S's vertices off the cut, [ns, na) the */
+    uint32_t ns, nf;  /* fans' added vertices (sq_param_grade_fans); nf  */
+                      /* triangles (S's, the fans' replaced)            */
+    uint32_t *fin;    /* nf: the input face of every triangle            */
+    double *p3;       /* 3 na: 3D positions                                */
     uint32_t *mseq;   /* nbl: the cut halfedge naming boundary vertex i    */
-    uint32_t *a2s;    /* na: the surface vertex of every id                */
-    uint32_t *tri;    /* 3 S.nf: the faces of S in ids                     */
-    uint32_t *twin;   /* 3 S.nf: their twins, SQ_NONE across the cut       */
+    uint32_t *a2s;    /* ns: the surface vertex of every id but the fans'  */
+    uint32_t *tri;    /* 3 nf: the faces of S in ids                       */
+    uint32_t *twin;   /* 3 nf: their twins, SQ_NONE across the cut         */
     uint32_t *wb;     /* O->cut.nv: the id of Omega's boundary vertices    */
     uint32_t *bstart; /* nbnd: the id at the start of Omega's boundary     */
                       /* edge i (its surface points follow it)             */
@@ -2593,7 +2598,7 @@ typedef struct surface_disk {
 static void surface_disk_free(surface_disk *A)
 {
     free(A->mseq), free(A->a2s), free(A->tri), free(A->twin), free(A->wb), free(A->bstart);
-    free(A->buv), free(A->xy);
+    free(A->buv), free(A->xy), free(A->fin), free(A->p3);
     memset(A, 0, sizeof *A);
 }
 
@@ -2690,7 +2695,31 @@ static sq_status surface_disk_build(ctx *c, const uint32_t *oseq, surface_disk *
         for (uint32_t i = 0; i < 3; i++, e = S->next[e]) A->twin[3 * f + i] = S->kind[e] ? SQ_NONE : hpos[S->twin[e]];
     }
     for (uint32_t i = 0; i < na; i++) memcpy(p3 + 3 * (size_t)i, S->pos + 3 * (size_t)A->a2s[i], 3 * sizeof *p3);
-    st = sq_param_disk_tutte(S->nf, A->tri, A->twin, nbl, na - nbl, p3, A->xy, err);
+    A->ns = na, A->nf = S->nf, A->p3 = p3, p3 = NULL;
+    A->fin = malloc(((size_t)S->nf + 1) * sizeof *A->fin);
+    if (!A->fin) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t f = 0; f < S->nf; f++) A->fin[f] = S->forig[f];
+    /* the fans along the cut graded (fewer crossings) */
+    if (c->opt->fans == SQ_FANS_ON) {
+        uint32_t added = 0;
+        st = sq_param_grade_fans(nbl, SQ_FAN_MIN_RUN, A->twin, &A->nf, &A->tri, &A->fin, &A->na, &A->p3, &added, err);
+        if (st == SQ_OK && added) {
+            na = A->na;
+            double *xy = realloc(A->xy, 2 * (size_t)na * sizeof *xy);
+            uint32_t *tw = realloc(A->twin, 3 * (size_t)A->nf * sizeof *tw);
+            if (xy) A->xy = xy;
+            if (tw) A->twin = tw;
+            if (!xy || !tw) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            else if (sq_param_pair_twins(A->nf, A->tri, A->twin))
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the graded fans are no manifold disk");
+        }
+        c->fan_vertices = added;
+        if (st) goto done;
+    }
+    st = sq_param_disk_tutte(A->nf, A->tri, A->twin, nbl, na - nbl, A->p3, A->xy, err);
 done:
     free(bidx), free(aid), free(hpos), free(p3);
     if (st) surface_disk_free(A);
@@ -2739,7 +2768,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     st = sq_param_disk_tutte(nbt, btri, btw, na, nv - na, p3, xy, err);
     if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
-    sq_overlay_mesh Am = {S->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
+    sq_overlay_mesh Am = {A->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
     progress(c, "overlay", 0.75);
     /* in two threads where the caller allows them (the same result) */
     st = sq_overlay_build_threads(nbl, na, nv, xy, &Am, &Bm,
@@ -2750,8 +2779,11 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     if (cancelled(c)) st = stop_if_cancelled(c);
     if (st) goto done;
     stats->crossings = X.nx;
-    /* the output: S's vertices, then B's interior vertices, then the crossings */
-    uint32_t nout = S->nv + (nv - na) + X.nx;
+    stats->fan_vertices = c->fan_vertices;
+    /* the output: S's vertices, then the fans' and B's interior vertices
+     * (ids from ns on), then the crossings */
+    const uint32_t ns = A->ns;
+    uint32_t nout = S->nv + (nv - ns) + X.nx;
     P->nv = nout, P->nf = X.ntri, P->nv_input = S->nv_input, P->nuv = nv + X.nx;
     P->pos = malloc(3 * (size_t)nout * sizeof *P->pos);
     P->uv = malloc(2 * (size_t)P->nuv * sizeof *P->uv);
@@ -2766,20 +2798,21 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
         goto done;
     }
     const uint32_t *a2s = A->a2s, *atri = A->tri;
+    const double *ap3 = A->p3;
     memcpy(P->pos, S->pos, 3 * (size_t)S->nv * sizeof *P->pos);
+    for (uint32_t i = ns; i < na; i++) memcpy(P->pos + 3 * ((size_t)S->nv + i - ns), ap3 + 3 * (size_t)i, 3 * sizeof *P->pos);
     memcpy(P->valence, valence, (size_t)S->nv_input * sizeof *P->valence);
     for (uint32_t i = na; i < nv; i++) {
         const uint32_t *t = atri + 3 * (size_t)X.loc[i];
         const double *l = X.bary + 3 * (size_t)i;
-        double *p = P->pos + 3 * ((size_t)S->nv + i - na);
+        double *p = P->pos + 3 * ((size_t)S->nv + i - ns);
         for (int d = 0; d < 3; d++)
-            p[d] = l[0] * S->pos[3 * (size_t)a2s[t[0]] + d] + l[1] * S->pos[3 * (size_t)a2s[t[1]] + d] +
-                   l[2] * S->pos[3 * (size_t)a2s[t[2]] + d];
+            p[d] = l[0] * ap3[3 * (size_t)t[0] + d] + l[1] * ap3[3 * (size_t)t[1] + d] + l[2] * ap3[3 * (size_t)t[2] + d];
     }
     for (uint32_t k = 0; k < X.nx; k++) {
         uint32_t h = X.x_ha[k], h1 = sq_param_corner_next(h);
-        const double *p0 = S->pos + 3 * (size_t)a2s[atri[h]], *p1 = S->pos + 3 * (size_t)a2s[atri[h1]];
-        double t = X.x_ta[k], *p = P->pos + 3 * ((size_t)S->nv + nv - na + k);
+        const double *p0 = ap3 + 3 * (size_t)atri[h], *p1 = ap3 + 3 * (size_t)atri[h1];
+        double t = X.x_ta[k], *p = P->pos + 3 * ((size_t)S->nv + nv - ns + k);
         for (int d = 0; d < 3; d++) p[d] = (1 - t) * p0[d] + t * p1[d];
     }
     /* UVs: the boundary's and B's own; A's interior vertices by their B
@@ -2799,12 +2832,12 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
         double t = X.x_tb[k];
         for (int d = 0; d < 2; d++) P->uv[2 * ((size_t)nv + k) + d] = (1 - t) * u0[d] + t * u1[d];
     }
-    for (uint32_t f = 0; f < X.ntri; f++) P->tri_in[f] = S->forig[X.tri_fa[f]];
+    for (uint32_t f = 0; f < X.ntri; f++) P->tri_in[f] = A->fin[X.tri_fa[f]];
     for (uint32_t f = 0; f < X.ntri; f++)
         for (int i = 0; i < 3; i++) {
             uint32_t o = X.tri[3 * (size_t)f + i];
             P->tri_uv[3 * (size_t)f + i] = o;
-            P->tri[3 * (size_t)f + i] = o < na ? a2s[o] : S->nv + (o - na);
+            P->tri[3 * (size_t)f + i] = o < ns ? a2s[o] : S->nv + (o - ns);
             uint32_t o1 = X.tri[3 * (size_t)f + (i + 1) % 3];
             P->he_cut[3 * (size_t)f + i] = o < nbl && o1 == (o + 1) % nbl ? S->kind[A->mseq[o]] : 0;
         }

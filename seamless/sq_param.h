@@ -111,6 +111,13 @@ typedef struct sq_param_options {
      * passes mpz/elk and cid/elephant, which nothing else does, in 11 to
      * 14 s (docs/param.md). SQ_FALLBACK_OFF: none. */
     int fallback;
+    /* SQ_FANS_ON (default): in the overlay (step 7'), the fans of thin
+     * triangles along the cut (an input edge on the cut split at Omega's
+     * boundary points, every piece joined to the opposite vertex) are
+     * replaced by graded triangulations of the same polygons before the
+     * disk map (sq_param_grade_fans): far fewer crossings, the same
+     * guarantees. SQ_FANS_OFF: the fans as they are. */
+    int fans;
 } sq_param_options;
 
 /* SQ_INTERIOR_OVERLAY triangulates Omega in its unit squares, and where
@@ -120,6 +127,7 @@ typedef struct sq_param_options {
 enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2, SQ_INTERIOR_OVERLAY_CHORDS = 3 };
 enum { SQ_SIMPLIFY_ON = 0, SQ_SIMPLIFY_OFF = 1 };
 enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
+enum { SQ_FANS_ON = 0, SQ_FANS_OFF = 1 };
 #define SQ_FALLBACK_ATTEMPTS 4
 #define SQ_FALLBACK_AFTER 2
 #define SQ_FALLBACK_PER_FACE 400u
@@ -216,6 +224,8 @@ typedef struct sq_param_stats {
                                             /* map; the fallback's first one, */
                                             /* far less distorted, replaced it */
     uint32_t wall_splits;                   /* tree qtri: input edges split   */
+    uint32_t fan_vertices;                  /* overlay: added by the graded   */
+                                            /* fans (sq_param_grade_fans)     */
                                             /* at their midpoints where the   */
                                             /* cut walled a cone in (0: none) */
     int fallback;                           /* 1: the fallback made the map   */

@@ -64,6 +64,17 @@ int sq_param_pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin);
 sq_status sq_param_disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *twin, uint32_t first,
                               uint32_t n, const double *p3, double *xy, sq_error *err);
 
+/* The overlay's surface disk (step 7'): every fan of at least min_run
+ * triangles with one interior apex, one input face (fin) and a straight
+ * base of boundary edges (twin SQ_NONE, both ends < nbl) replaced by a
+ * graded triangulation of the same polygon (sq_param_fans.c). tri, fin
+ * (nf), p3 (3 per vertex, nv) grow in place (the kept faces in their
+ * order, then the new ones; the new vertices from nv on, inside their
+ * polygons); twins are the caller's to redo. added: the new vertices. */
+#define SQ_FAN_MIN_RUN 12u
+sq_status sq_param_grade_fans(uint32_t nbl, uint32_t min_run, const uint32_t *twin, uint32_t *nf, uint32_t **tri,
+                              uint32_t **fin, uint32_t *nv, double **p3, uint32_t *added, sq_error *err);
+
 /* Tree qtri where the cut walls a cone in (sq_param_walls.c): m with a
  * midpoint on every edge that joins two blocked vertices (cones,
  * valence[v] != 4, and the vertices of the cut he_cut) and is not cut,

@@ -227,23 +227,25 @@ static int try_collapse(simp *s, uint32_t v, const uint32_t *cs, uint32_t d, uin
     s->flag[v] &= (uint8_t)~(F_FREE | F_LINK);
     s->vc[v] = SQ_NONE;
     /* to be tried again: every vertex whose collapses this may change: w
-     * and its new ring (their stars changed), and the neighbours of those
-     * whose last try failed only by the link condition (their targets'
-     * rings changed; nothing else about them did) */
-    uint32_t c0 = s->vc[w], c = c0;
+     * and v's old ring (their stars changed; the rest of w's ring keeps
+     * its stars, and w did not move, so only their link conditions can
+     * have changed), and the neighbours of w's new ring whose last try
+     * failed only by the link condition (their targets' rings changed) */
     enqueue(s, w);
-    do {
-        uint32_t u = P->tri[sq_param_corner_next(c)], e0 = s->vc[u], e = e0;
-        enqueue(s, u);
-        if (s->nlink) {
+    for (uint32_t i = 0; i < d; i++) enqueue(s, P->tri[sq_param_corner_next(cs[i])]);
+    if (s->nlink) {
+        uint32_t c0 = s->vc[w], c = c0;
+        do {
+            uint32_t u = P->tri[sq_param_corner_next(c)], e0 = s->vc[u], e = e0;
+            if (s->flag[u] & F_LINK) enqueue(s, u);
             do {
                 uint32_t x = P->tri[sq_param_corner_next(e)];
                 if (s->flag[x] & F_LINK) enqueue(s, x);
                 e = s->tw[sq_param_corner_prev(e)];
             } while (e != e0);
-        }
-        c = s->tw[sq_param_corner_prev(c)];
-    } while (c != c0);
+            c = s->tw[sq_param_corner_prev(c)];
+        } while (c != c0);
+    }
     return 1;
 }
 
