@@ -52,6 +52,10 @@ typedef struct ov {
     uint32_t stop_g; /* over the budget after face stop_g (else SQ_NONE)  */
     const _Atomic int *cancel; /* set: stop (NULL: never)                 */
     const _Atomic uint64_t *limit; /* a budget lowered later (0: none)    */
+    uint32_t *sa_stamp; /* na: B face + 1 whose edges sa_side holds for  */
+    int8_t *sa_side;    /* 3 na: A vertex against them (side(); 2: a 0   */
+                        /* that flags a degeneracy). An A vertex lies in */
+                        /* about six of the A faces a B face meets.      */
 } ov;
 
 static inline uint32_t nxt(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
@@ -194,11 +198,25 @@ static int pair_polygon(ov *c, uint32_t fa, uint32_t fb, uint32_t poly[15])
     const uint32_t *a = c->A->tri + 3 * (size_t)fa, *b = c->B->tri + 3 * (size_t)fb;
     int sA[3][3], sB[3][3]; /* sA[i][j]: A vertex i against B edge j */
     c->degenerate = 0;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 3; i++) {
+        uint32_t v = a[i];
+        int8_t *sv = c->sa_side + 3 * (size_t)v;
+        if (c->sa_stamp[v] != fb + 1) {
+            for (int j = 0; j < 3; j++) {
+                int was = c->degenerate;
+                c->degenerate = 0;
+                int s = side(c, b[j], b[(j + 1) % 3], v);
+                sv[j] = (int8_t)(c->degenerate ? 2 : s);
+                c->degenerate = was;
+            }
+            c->sa_stamp[v] = fb + 1;
+        }
         for (int j = 0; j < 3; j++) {
-            sA[i][j] = side(c, b[j], b[(j + 1) % 3], a[i]);
+            if (sv[j] == 2) c->degenerate = 1;
+            sA[i][j] = sv[j] == 2 ? 0 : sv[j];
             sB[j][i] = side(c, a[i], a[(i + 1) % 3], b[j]);
         }
+    }
     if (c->degenerate) return -1;
     /* local points: A vertex i -> i, B vertex j -> 3 + j (or the A vertex
      * it is), crossing of A edge i and B edge j -> 6 + 3 i + j */
@@ -382,7 +400,9 @@ static void walk_range(ov *c)
     sq_status st = SQ_OK;
     uint32_t *mark = malloc((size_t)A->nf * sizeof *mark);
     uint32_t *queue = malloc((size_t)A->nf * sizeof *queue);
-    if (!mark || !queue) {
+    c->sa_stamp = calloc((size_t)c->na + 1, sizeof *c->sa_stamp);
+    c->sa_side = malloc(3 * ((size_t)c->na + 1));
+    if (!mark || !queue || !c->sa_stamp || !c->sa_side) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
@@ -457,6 +477,8 @@ static void walk_range(ov *c)
 done:
     free(mark);
     free(queue);
+    free(c->sa_stamp), free(c->sa_side);
+    c->sa_stamp = NULL, c->sa_side = NULL;
     c->st = st;
 }
 

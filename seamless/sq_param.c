@@ -2850,7 +2850,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    int pr = sq_param_pair_twins(X.ntri, P->tri, P->he_twin);
+    int pr = sq_param_pair_twins_threads(X.ntri, P->tri, P->he_twin, c->opt->threads);
     if (pr == -1) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;

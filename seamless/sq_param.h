@@ -115,8 +115,9 @@ typedef struct sq_param_options {
      * triangles along the cut (an input edge on the cut split at Omega's
      * boundary points, every piece joined to the opposite vertex) are
      * replaced by graded triangulations of the same polygons before the
-     * disk map (sq_param_grade_fans): far fewer crossings, the same
-     * guarantees. SQ_FANS_OFF: the fans as they are. */
+     * disk map (sq_param_grade_fans): far fewer crossings (mpz/elk 45%,
+     * cid/elephant 30%), the same guarantees. SQ_FANS_OFF: the fans as
+     * they are. */
     int fans;
 } sq_param_options;
 

@@ -1,15 +1,57 @@
 /* seamquad: Tutte's map of an open triangulated disk (step 7', the
  * overlay's two disk maps; sq_param.c). */
+#include <pthread.h>
 #include <stdlib.h>
 
 #include "sq_mean_value.h"
 #include "sq_param_internal.h"
 #include "sq_sparse.h"
 
+/* Pairs the halfedges of buckets [v0, v1) (start[v]: the end of bucket v,
+ * bucket by smaller vertex); returns 0 or -2 (see sq_param_pair_twins). */
+typedef struct pair_job {
+    const uint32_t *tri, *start, *bucket;
+    uint32_t *twin;
+    uint32_t v0, v1;
+    int r;
+} pair_job;
+
+static void *pair_buckets(void *arg)
+{
+    pair_job *J = arg;
+    const uint32_t *tri = J->tri, *start = J->start, *bucket = J->bucket;
+    int r = 0;
+    for (uint32_t v = J->v0, begin = v ? start[v - 1] : 0; v < J->v1; begin = start[v++])
+        for (uint32_t i = begin; i < start[v]; i++) {
+            uint32_t h = bucket[i], a = tri[h], b = tri[sq_param_corner_next(h)], hi = a < b ? b : a;
+            uint32_t same = 0, other = SQ_NONE;
+            for (uint32_t k = begin; k < start[v]; k++) {
+                uint32_t g = bucket[k];
+                if (g == h) continue;
+                uint32_t c = tri[g], d = tri[sq_param_corner_next(g)];
+                if ((c < d ? d : c) != hi) continue;
+                same++;
+                if (c == b && d == a) other = g;
+                else r = -2; /* two halfedges in one direction */
+            }
+            if (same > 1) r = -2; /* an edge with more than two halfedges */
+            if (same == 1 && other != SQ_NONE) J->twin[h] = other;
+        }
+    J->r = r;
+    return NULL;
+}
+
 int sq_param_pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin)
 {
+    return sq_param_pair_twins_threads(nf, tri, twin, 1);
+}
+
+int sq_param_pair_twins_threads(uint32_t nf, const uint32_t *tri, uint32_t *twin, uint32_t threads)
+{
     /* halfedges bucketed by their smaller vertex (a counting sort), then
-     * paired within each bucket by the larger one */
+     * paired within each bucket by the larger one (the buckets split
+     * between two threads where asked: each writes its own halfedges'
+     * twins, the same result) */
     size_t nh = 3 * (size_t)nf;
     uint32_t nv = 0;
     for (size_t h = 0; h < nh; h++)
@@ -30,25 +72,18 @@ int sq_param_pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin)
         bucket[start[a < b ? a : b]++] = (uint32_t)h;
     }
     /* start[v] is now the end of bucket v */
-    int r = 0;
-    for (uint32_t v = 0, begin = 0; v < nv; begin = start[v++])
-        for (uint32_t i = begin; i < start[v]; i++) {
-            uint32_t h = bucket[i], a = tri[h], b = tri[sq_param_corner_next(h)], hi = a < b ? b : a;
-            uint32_t same = 0, other = SQ_NONE;
-            for (uint32_t k = begin; k < start[v]; k++) {
-                uint32_t g = bucket[k];
-                if (g == h) continue;
-                uint32_t c = tri[g], d = tri[sq_param_corner_next(g)];
-                if ((c < d ? d : c) != hi) continue;
-                same++;
-                if (c == b && d == a) other = g;
-                else r = -2; /* two halfedges in one direction */
-            }
-            if (same > 1) r = -2; /* an edge with more than two halfedges */
-            if (same == 1 && other != SQ_NONE) twin[h] = other;
+    uint32_t split = nv;
+    if (threads > 1)
+        for (split = 0; split < nv && start[split] < nh / 2; split++) {
         }
+    pair_job J[2] = {{tri, start, bucket, twin, 0, split, 0}, {tri, start, bucket, twin, split, nv, 0}};
+    pthread_t th;
+    int helper = split < nv && pthread_create(&th, NULL, pair_buckets, &J[1]) == 0;
+    pair_buckets(&J[0]);
+    if (helper) pthread_join(th, NULL);
+    else if (split < nv) pair_buckets(&J[1]);
     free(start), free(bucket);
-    return r;
+    return J[0].r ? J[0].r : J[1].r;
 }
 
 /* Tutte's map of one mesh (nf triangles tri, twins twin) onto the disk:

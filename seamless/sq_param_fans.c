@@ -8,7 +8,9 @@
  * deep into the surface. In the disk, every one of those long edges
  * crosses every row of Omega's triangles between the circle and the fan's
  * apex: on mpz/elk the fans of 16 or more triangles (3% of the surface's
- * triangles) made half of the overlay's 8.2 million faces.
+ * triangles) made half of the overlay's 8.2 million faces. Graded, elk's
+ * crossings drop from 4.09 to 2.26 million, elephant's from 4.44 to 3.09
+ * million (docs/param.md, "Graded fans along the cut").
  *
  * This pass replaces every such fan by a graded triangulation of the same
  * polygon (apex c, base p_0 .. p_k on one straight input edge, in one
@@ -32,10 +34,12 @@
  * base's width (below it every vertex stands at half its parent's height
  * over half its base): low vertices keep the many short edges close to the
  * cut, where Omega's layers are thin too. Crossings of the overlay against
- * this value (mpz/elk, cid/elephant; 4.09M, 4.44M without the fans): 1/2:
- * 3.02M, 4.16M; 1/8: 2.72M, 3.83M; 1/32: 2.45M, 3.53M; 1/64: 2.37M, 3.44M.
- * 1/32 keeps the triangles' angles above a few degrees' fraction. */
-#define FAN_HEIGHT (1.0 / 32)
+ * this value, fans of 12 or more triangles (mpz/elk, cid/elephant; 4.09M,
+ * 4.44M without the fans): 1/2: 3.02M, 4.16M; 1/8: 2.72M, 3.83M; 1/32:
+ * 2.46M, 3.53M; with fans of 3 or more (SQ_FAN_MIN_RUN): 1/32: 2.41M,
+ * 3.29M; 1/128: 2.26M, 3.09M; 1/256: 2.22M, 3.03M. 1/128 keeps the
+ * smallest heights in the disk maps far above the solver's rounding. */
+#define FAN_HEIGHT (1.0 / 128)
 
 /* a growing face list (tri, fin) and vertex list (p3) */
 typedef struct fan_out {

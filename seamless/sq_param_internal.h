@@ -55,6 +55,8 @@ static inline uint32_t sq_param_corner_prev(uint32_t c) { return c % 3 == 0 ? c 
  * memory; -2: an edge with more than two halfedges or two in one direction
  * (sq_param_disk_tutte.c). */
 int sq_param_pair_twins(uint32_t nf, const uint32_t *tri, uint32_t *twin);
+/* The same, the pairing in two threads when threads > 1 (same result). */
+int sq_param_pair_twins_threads(uint32_t nf, const uint32_t *tri, uint32_t *twin, uint32_t threads);
 
 /* Tutte's map of one triangulated disk (nf triangles tri, twins twin) onto
  * the plane: its interior vertices [first, first + n) at the
@@ -71,7 +73,7 @@ sq_status sq_param_disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *
  * (nf), p3 (3 per vertex, nv) grow in place (the kept faces in their
  * order, then the new ones; the new vertices from nv on, inside their
  * polygons); twins are the caller's to redo. added: the new vertices. */
-#define SQ_FAN_MIN_RUN 12u
+#define SQ_FAN_MIN_RUN 3u
 sq_status sq_param_grade_fans(uint32_t nbl, uint32_t min_run, const uint32_t *twin, uint32_t *nf, uint32_t **tri,
                               uint32_t **fin, uint32_t *nv, double **p3, uint32_t *added, sq_error *err);
 

@@ -227,7 +227,7 @@ static void test_random_disks(void **state)
 static void test_short_fans_kept(void **state)
 {
     (void)state;
-    uint32_t pieces[4] = {1, 2, SQ_FAN_MIN_RUN - 1, 3}, fin_of[4] = {0, 1, 2, 3};
+    uint32_t pieces[4] = {1, 2, SQ_FAN_MIN_RUN - 1, 1}, fin_of[4] = {0, 1, 2, 3};
     rng_state = 7;
     disk D;
     make_disk(&D, 4, pieces, fin_of);
