@@ -13,8 +13,10 @@
  * the same libcholmod.so, and we leave CHOLMOD's automatic choice between
  * simplicial and supernodal factorization on (CHOLMOD_AUTO: supernodal when
  * flops / nnz(L) >= 40, which holds for mesh Laplacians of a few thousand
- * vertices and more). So in practice we use the supernodal (GPL) code for
- * large meshes and the simplicial (LGPL) code for small ones.
+ * vertices and more) for systems of 60,000 unknowns and more, and take the
+ * simplicial code below that (SPD_SIMPLICIAL_BELOW). So in practice we use
+ * the supernodal (GPL) code for large meshes and the simplicial (LGPL) code
+ * for small ones.
  *
  * Singular matrices are reported, not solved. Besides the exact failures the
  * libraries report (a pivot that is not positive for Cholesky, a zero pivot
@@ -137,6 +139,15 @@ static sq_status cholmod_check(const char *who, const char *step, int ok,
                         cholmod_status_text(c->status), c->status);
 }
 
+/* Systems of fewer unknowns are factored by the simplicial code whatever
+ * CHOLMOD_AUTO would choose: the supernodal code enters OpenMP for every
+ * factorization, which for the guidance's ~70 layouts of growing
+ * metapolygons (seed 9.2, up to 40,000 unknowns) cost more than it saved
+ * (cid/elephant's domain step 2.65-3.1 s -> 2.3 s, mpz/elk's 3.0 -> 2.55 s;
+ * with every system simplicial, elk's 94,000-unknown layouts lost it
+ * again: 2.98 s). */
+#define SPD_SIMPLICIAL_BELOW 60000u
+
 static void set_cholmod_options(cholmod_common *c)
 {
     c->print = 0;                          /* the library never prints */
@@ -228,6 +239,7 @@ sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint
     }
     set_cholmod_options(&f->common);
     cholmod_common *c = &f->common;
+    if (n < SPD_SIMPLICIAL_BELOW) c->supernodal = CHOLMOD_SIMPLICIAL;
 
     /* Keep the lower triangle only: CHOLMOD would otherwise transpose the
      * upper entries and add them in. */

@@ -244,6 +244,55 @@ static void test_obj_text(void **state)
     io_rmdir(dir);
 }
 
+/* Face lines are written a few at a time through one buffer; a polygon too
+ * large for it takes the token-by-token path. Both give the same text as
+ * formatting each line on its own (checked against snprintf here), for
+ * many faces (the buffer flushed between faces) and a 1000-gon. */
+static void test_obj_face_buffer(void **state)
+{
+    (void)state;
+    enum { NV = 1000, NTRI = 3000 };
+    static double pos[3 * NV];
+    static uint32_t off[NTRI + 2], idx[3 * NTRI + NV], fuv[3 * NTRI + NV];
+    static double uv[2] = {0.5, 0.25};
+    for (uint32_t v = 0; v < NV; v++) pos[3 * v] = v, pos[3 * v + 1] = 0.5 * v, pos[3 * v + 2] = 1;
+    uint32_t c = 0;
+    for (uint32_t f = 0; f < NTRI; f++) {
+        off[f] = c;
+        for (uint32_t k = 0; k < 3; k++) {
+            idx[c] = (7 * f + 331 * k) % NV;
+            fuv[c++] = (f + k) % 3 == 0 ? SQ_NONE : 0;
+        }
+    }
+    off[NTRI] = c; /* the 1000-gon */
+    for (uint32_t k = 0; k < NV; k++) idx[c] = k, fuv[c++] = k % 2 ? 0 : SQ_NONE;
+    off[NTRI + 1] = c;
+    char dir[256], obj[512];
+    io_mkdtemp(dir, sizeof dir);
+    snprintf(obj, sizeof obj, "%s/faces.obj", dir);
+    sq_error e;
+    assert_int_equal(sq_write_obj(obj, NV, pos, NTRI + 1, off, idx, 1, uv, fuv, &e), SQ_OK);
+    char *text;
+    size_t size;
+    assert_int_equal(sq_read_file(obj, &text, &size, &e), SQ_OK);
+    const char *p = strstr(text, "\nf ");
+    assert_non_null(p);
+    p++;
+    char want[16384];
+    for (uint32_t f = 0; f <= NTRI; f++) {
+        int n = snprintf(want, sizeof want, "f");
+        for (uint32_t k = off[f]; k < off[f + 1]; k++)
+            n += fuv[k] == SQ_NONE ? snprintf(want + n, sizeof want - (size_t)n, " %u", idx[k] + 1)
+                                   : snprintf(want + n, sizeof want - (size_t)n, " %u/%u", idx[k] + 1, fuv[k] + 1);
+        n += snprintf(want + n, sizeof want - (size_t)n, "\n");
+        assert_true(strncmp(p, want, (size_t)n) == 0);
+        p += n;
+    }
+    assert_int_equal(*p, '\0');
+    free(text);
+    io_rmdir(dir);
+}
+
 static void test_missing_directory(void **state)
 {
     (void)state;
@@ -460,6 +509,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_obj_round_trip),
+        cmocka_unit_test(test_obj_face_buffer),
         cmocka_unit_test(test_ply_round_trip),
         cmocka_unit_test(test_obj_uv_round_trip),
         cmocka_unit_test(test_exact_values),
