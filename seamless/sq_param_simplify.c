@@ -402,6 +402,11 @@ static sq_status split_faces(const sq_mesh *m, const sq_param *P, uint8_t *fgrou
 static void *run_half(void *arg)
 {
     simp *s = arg;
+    /* in the order the triangles meet them: neighbours are tried close
+     * together in time and in memory (20-27% faster on the cells' outputs
+     * than by vertex index, and 4-5% fewer faces); each half queues its
+     * own vertices (enqueue skips the others) */
+    for (uint32_t c = 0; c < 3 * s->P->nf; c++) enqueue(s, s->P->tri[c]);
     s->done = simplify_queue(s);
     return NULL;
 }
@@ -490,13 +495,7 @@ sq_status sq_param_simplify_threads(const sq_mesh *m, sq_param *P, uint32_t thre
     simp h[2];
     h[0] = s, h[1] = s;
     h[1].queue = queue1;
-    /* in the order the triangles meet them: neighbours are tried close
-     * together in time and in memory (20-27% faster on the cells' outputs
-     * than by vertex index, and 4-5% fewer faces) */
-    for (int g = 0; g < 2; g++) {
-        h[g].group = (uint8_t)g;
-        for (uint32_t c = 0; c < 3 * P->nf; c++) enqueue(&h[g], P->tri[c]);
-    }
+    h[0].group = 0, h[1].group = 1;
     pthread_t th;
     int helper = threads > 1 && pthread_create(&th, NULL, run_half, &h[1]) == 0;
     run_half(&h[0]);
