@@ -2726,6 +2726,34 @@ done:
     return st;
 }
 
+/* The overlay's crossings as output vertices: each at its parameter along
+ * its surface edge (3D) and along its domain edge (UV). */
+typedef struct cross_fill {
+    const sq_overlay *X;
+    const double *ap3, *buv;
+    const uint32_t *atri, *btri;
+    double *pos, *uv; /* the first crossing's */
+} cross_fill;
+
+static void *fill_crossings(void *arg)
+{
+    const cross_fill *F = arg;
+    const sq_overlay *X = F->X;
+    for (uint32_t k = 0; k < X->nx; k++) {
+        uint32_t h = X->x_ha[k], h1 = sq_param_corner_next(h);
+        const double *p0 = F->ap3 + 3 * (size_t)F->atri[h], *p1 = F->ap3 + 3 * (size_t)F->atri[h1];
+        double t = X->x_ta[k], *p = F->pos + 3 * (size_t)k;
+        for (int d = 0; d < 3; d++) p[d] = (1 - t) * p0[d] + t * p1[d];
+    }
+    for (uint32_t k = 0; k < X->nx; k++) {
+        uint32_t h = X->x_hb[k], h1 = sq_param_corner_next(h);
+        const double *u0 = F->buv + 2 * (size_t)F->btri[h], *u1 = F->buv + 2 * (size_t)F->btri[h1];
+        double t = X->x_tb[k];
+        for (int d = 0; d < 2; d++) F->uv[2 * (size_t)k + d] = (1 - t) * u0[d] + t * u1[d];
+    }
+    return NULL;
+}
+
 /* Step 7' against one triangulation of Omega (omega_triangulation; C:
  * the chords' rectangles, or NULL: the unit squares): Omega on the disk
  * with A's boundary points, the overlay, and P from it. */
@@ -2809,12 +2837,12 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
         for (int d = 0; d < 3; d++)
             p[d] = l[0] * ap3[3 * (size_t)t[0] + d] + l[1] * ap3[3 * (size_t)t[1] + d] + l[2] * ap3[3 * (size_t)t[2] + d];
     }
-    for (uint32_t k = 0; k < X.nx; k++) {
-        uint32_t h = X.x_ha[k], h1 = sq_param_corner_next(h);
-        const double *p0 = ap3 + 3 * (size_t)atri[h], *p1 = ap3 + 3 * (size_t)atri[h1];
-        double t = X.x_ta[k], *p = P->pos + 3 * ((size_t)S->nv + nv - ns + k);
-        for (int d = 0; d < 3; d++) p[d] = (1 - t) * p0[d] + t * p1[d];
-    }
+    /* the crossings' points and UVs beside the triangles below (in a thread
+     * of their own where allowed: they write other arrays) */
+    cross_fill cf = {&X, ap3, buv, atri, btri, P->pos + 3 * ((size_t)S->nv + nv - ns), P->uv + 2 * (size_t)nv};
+    pthread_t cf_th;
+    int cf_helper = c->opt->threads > 1 && pthread_create(&cf_th, NULL, fill_crossings, &cf) == 0;
+    if (!cf_helper) fill_crossings(&cf);
     /* UVs: the boundary's and B's own; A's interior vertices by their B
      * triangle; crossings along their B edge */
     memcpy(P->uv, buv, 2 * (size_t)nbl * sizeof *P->uv);
@@ -2826,12 +2854,6 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
             P->uv[2 * (size_t)i + d] = l[0] * buv[2 * (size_t)t[0] + d] + l[1] * buv[2 * (size_t)t[1] + d] +
                                        l[2] * buv[2 * (size_t)t[2] + d];
     }
-    for (uint32_t k = 0; k < X.nx; k++) {
-        uint32_t h = X.x_hb[k], h1 = sq_param_corner_next(h);
-        const double *u0 = buv + 2 * (size_t)btri[h], *u1 = buv + 2 * (size_t)btri[h1];
-        double t = X.x_tb[k];
-        for (int d = 0; d < 2; d++) P->uv[2 * ((size_t)nv + k) + d] = (1 - t) * u0[d] + t * u1[d];
-    }
     for (uint32_t f = 0; f < X.ntri; f++) P->tri_in[f] = A->fin[X.tri_fa[f]];
     for (uint32_t f = 0; f < X.ntri; f++)
         for (int i = 0; i < 3; i++) {
@@ -2841,6 +2863,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
             uint32_t o1 = X.tri[3 * (size_t)f + (i + 1) % 3];
             P->he_cut[3 * (size_t)f + i] = o < nbl && o1 == (o + 1) % nbl ? S->kind[A->mseq[o]] : 0;
         }
+    if (cf_helper) pthread_join(cf_th, NULL);
     /* the seams from the output's twins (corner k's edge against the one
      * across it; every edge with exactly two triangles, opposite: the
      * refined surface is closed; sq_param_verify checks the whole mesh of
