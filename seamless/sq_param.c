@@ -2712,9 +2712,9 @@ static sq_status surface_disk_build(ctx *c, const uint32_t *oseq, surface_disk *
             uint32_t *tw = realloc(A->twin, 3 * (size_t)A->nf * sizeof *tw);
             if (xy) A->xy = xy;
             if (tw) A->twin = tw;
-            if (!xy || !tw) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            else if (sq_param_pair_twins(A->nf, A->tri, A->twin))
-                st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the graded fans are no manifold disk");
+            int pr = !xy || !tw ? -1 : sq_param_pair_twins(A->nf, A->tri, A->twin);
+            if (pr == -1) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            else if (pr) st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the graded fans are no manifold disk");
         }
         c->fan_vertices = added;
         if (st) goto done;
