@@ -446,6 +446,28 @@ static int u64_option(const char *name, const char *arg, unsigned long long lo, 
     return 0;
 }
 
+/* One of an option's keywords (names[i] -> values[i], n of them) into
+ * *out, or a message naming them all (0 returned). */
+typedef struct keyword {
+    const char *name;
+    int value;
+} keyword;
+
+static int keyword_option(const char *name, const char *arg, const keyword *k, size_t n, int *out)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!strcmp(arg, k[i].name)) {
+            *out = k[i].value;
+            return 1;
+        }
+    fprintf(stderr, "seamquad param: %s takes ", name);
+    for (size_t i = 0; i < n; i++) fprintf(stderr, "%s%s", k[i].name, i + 2 < n ? ", " : i + 2 == n ? " or " : "");
+    fprintf(stderr, ", got '%s'\n", arg);
+    return 0;
+}
+
+#define KEYWORDS(...) ((const keyword[]){__VA_ARGS__}), sizeof((const keyword[]){__VA_ARGS__}) / sizeof(keyword)
+
 #define DIAG_CELLS 6
 
 /* --diagnose: the last attempt of the failed run (options `run`) again
@@ -535,60 +557,33 @@ int sq_cmd_param(int argc, char **argv)
         } else if (!strcmp(a, "--max-crossings") && has) {
             if (!u64_option(a, argv[++i], 1, 1000000000ull, &max_crossings)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--tree") && has) {
-            const char *arg = argv[++i];
-            if (!strcmp(arg, "alternate")) tree = SQ_TREE_ALTERNATE;
-            else if (!strcmp(arg, "surface")) tree = SQ_TREE_SURFACE;
-            else if (!strcmp(arg, "domain")) tree = SQ_TREE_DOMAIN;
-            else if (!strcmp(arg, "pair")) tree = SQ_TREE_PAIR;
-            else if (!strcmp(arg, "pair-exact")) tree = SQ_TREE_PAIR_EXACT;
-            else if (!strcmp(arg, "qtri")) tree = SQ_TREE_QTRI;
-            else {
-                fprintf(stderr, "seamquad param: --tree takes alternate, surface, domain, pair, pair-exact or qtri, got '%s'\n", arg);
+            if (!keyword_option(a, argv[++i],
+                                KEYWORDS({"alternate", SQ_TREE_ALTERNATE}, {"surface", SQ_TREE_SURFACE},
+                                         {"domain", SQ_TREE_DOMAIN}, {"pair", SQ_TREE_PAIR},
+                                         {"pair-exact", SQ_TREE_PAIR_EXACT}, {"qtri", SQ_TREE_QTRI}),
+                                &tree))
                 return SQ_EXIT_USAGE;
-            }
         } else if (!strcmp(a, "--interior") && has) {
-            const char *arg = argv[++i];
-            if (!strcmp(arg, "auto")) interior = SQ_INTERIOR_AUTO;
-            else if (!strcmp(arg, "cells")) interior = SQ_INTERIOR_CELLS;
-            else if (!strcmp(arg, "overlay")) interior = SQ_INTERIOR_OVERLAY;
-            else if (!strcmp(arg, "overlay-chords")) interior = SQ_INTERIOR_OVERLAY_CHORDS;
-            else {
-                fprintf(stderr, "seamquad param: --interior takes auto, cells, overlay or overlay-chords, got '%s'\n", arg);
+            if (!keyword_option(a, argv[++i],
+                                KEYWORDS({"auto", SQ_INTERIOR_AUTO}, {"cells", SQ_INTERIOR_CELLS},
+                                         {"overlay", SQ_INTERIOR_OVERLAY},
+                                         {"overlay-chords", SQ_INTERIOR_OVERLAY_CHORDS}),
+                                &interior))
                 return SQ_EXIT_USAGE;
-            }
         } else if (!strcmp(a, "--simplify") && has) {
-            const char *arg = argv[++i];
-            if (!strcmp(arg, "on")) simplify = SQ_SIMPLIFY_ON;
-            else if (!strcmp(arg, "off")) simplify = SQ_SIMPLIFY_OFF;
-            else {
-                fprintf(stderr, "seamquad param: --simplify takes on or off, got '%s'\n", arg);
+            if (!keyword_option(a, argv[++i], KEYWORDS({"on", SQ_SIMPLIFY_ON}, {"off", SQ_SIMPLIFY_OFF}), &simplify))
                 return SQ_EXIT_USAGE;
-            }
         } else if (!strcmp(a, "--fallback") && has) {
-            const char *arg = argv[++i];
-            if (!strcmp(arg, "auto")) fallback = SQ_FALLBACK_AUTO;
-            else if (!strcmp(arg, "off")) fallback = SQ_FALLBACK_OFF;
-            else {
-                fprintf(stderr, "seamquad param: --fallback takes auto or off, got '%s'\n", arg);
+            if (!keyword_option(a, argv[++i], KEYWORDS({"auto", SQ_FALLBACK_AUTO}, {"off", SQ_FALLBACK_OFF}), &fallback))
                 return SQ_EXIT_USAGE;
-            }
         } else if (!strcmp(a, "--fans") && has) {
-            const char *arg = argv[++i];
-            if (!strcmp(arg, "on")) fans = SQ_FANS_ON;
-            else if (!strcmp(arg, "off")) fans = SQ_FANS_OFF;
-            else {
-                fprintf(stderr, "seamquad param: --fans takes on or off, got '%s'\n", arg);
+            if (!keyword_option(a, argv[++i], KEYWORDS({"on", SQ_FANS_ON}, {"off", SQ_FANS_OFF}), &fans))
                 return SQ_EXIT_USAGE;
-            }
         } else if (!strcmp(a, "--guide") && has) {
-            const char *arg = argv[++i];
-            if (!strcmp(arg, "auto")) guidance = SQ_GUIDE_AUTO;
-            else if (!strcmp(arg, "on")) guidance = SQ_GUIDE_ON;
-            else if (!strcmp(arg, "off")) guidance = SQ_GUIDE_OFF;
-            else {
-                fprintf(stderr, "seamquad param: --guide takes auto, on or off, got '%s'\n", arg);
+            if (!keyword_option(a, argv[++i],
+                                KEYWORDS({"auto", SQ_GUIDE_AUTO}, {"on", SQ_GUIDE_ON}, {"off", SQ_GUIDE_OFF}),
+                                &guidance))
                 return SQ_EXIT_USAGE;
-            }
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "seamquad param: unknown option or missing value '%s' (see seamquad "
                             "param --help)\n", a);

@@ -62,6 +62,16 @@ static char *put_decimal(char *q, uint64_t v)
     return q;
 }
 
+/* Room for one more face token (at most 22 characters) and a line's end
+ * in buf (cap bytes, used of them filled): written out when short of it.
+ * Returns the bytes still in buf. */
+static size_t face_room(FILE *fp, char *buf, size_t cap, size_t used)
+{
+    if (used + 24 <= cap) return used;
+    fwrite(buf, 1, used, fp);
+    return 0;
+}
+
 /* One "tag x y [z]" line, each real exact (sq_format_double). */
 static void write_reals(FILE *fp, const char *tag, const double *x, int n)
 {
@@ -103,43 +113,27 @@ sq_status sq_write_obj(const char *path, uint32_t nv, const double *pos,
     for (uint32_t v = 0; v < nv && !ferror(fp); v++) write_reals(fp, "v", pos + 3 * (size_t)v, 3);
     for (uint32_t t = 0; uv && t < nuv && !ferror(fp); t++) write_reals(fp, "vt", uv + 2 * (size_t)t, 2);
     /* face lines: integers only, formatted by hand (fprintf per index was
-     * a third of the time of writing a large mesh), a few faces per write
-     * (one stdio call per token was a quarter of what remained) */
+     * a third of the time of writing a large mesh) into one buffer written
+     * when the next corner might not fit (one stdio call per token was a
+     * quarter of what remained); a token takes at most 22 characters
+     * (" " + 10 digits + "/" + 10 digits), a line's end one more */
     char buf[4096];
     size_t used = 0;
     for (uint32_t f = 0; f < nf && !ferror(fp); f++) {
-        /* a corner takes at most 1 + 10 + 1 + 10 characters */
-        if (used + 2 + 22 * (size_t)(face_off[f + 1] - face_off[f]) > sizeof buf) {
-            fwrite(buf, 1, used, fp);
-            used = 0;
-            if (2 + 22 * (size_t)(face_off[f + 1] - face_off[f]) > sizeof buf) { /* a huge polygon */
-                fputc('f', fp);
-                for (uint32_t c = face_off[f]; c < face_off[f + 1]; c++) {
-                    char tok[24], *q = tok;
-                    *q++ = ' ';
-                    q = put_decimal(q, face_idx[c] + 1);
-                    if (uv && face_uv[c] != SQ_NONE) {
-                        *q++ = '/';
-                        q = put_decimal(q, face_uv[c] + 1);
-                    }
-                    fwrite(tok, 1, (size_t)(q - tok), fp);
-                }
-                fputc('\n', fp);
-                continue;
-            }
-        }
-        char *q = buf + used;
-        *q++ = 'f';
+        used = face_room(fp, buf, sizeof buf, used);
+        buf[used++] = 'f';
         for (uint32_t c = face_off[f]; c < face_off[f + 1]; c++) {
+            used = face_room(fp, buf, sizeof buf, used);
+            char *q = buf + used;
             *q++ = ' ';
             q = put_decimal(q, face_idx[c] + 1);
             if (uv && face_uv[c] != SQ_NONE) {
                 *q++ = '/';
                 q = put_decimal(q, face_uv[c] + 1);
             }
+            used = (size_t)(q - buf);
         }
-        *q++ = '\n';
-        used = (size_t)(q - buf);
+        buf[used++] = '\n';
     }
     if (used && !ferror(fp)) fwrite(buf, 1, used, fp);
     if (ferror(fp)) return write_failed(&af, path, err);

@@ -55,9 +55,9 @@ typedef struct ov {
     const _Atomic int *cancel; /* set: stop (NULL: never)                 */
     const _Atomic uint64_t *limit; /* a budget lowered later (0: none)    */
     uint32_t *sa_stamp; /* na: B face + 1 whose edges sa_side holds for  */
-    int8_t *sa_side;    /* 3 na: A vertex against them (side(); 2: a 0   */
-                        /* that flags a degeneracy). An A vertex lies in */
-                        /* about six of the A faces a B face meets.      */
+    int8_t *sa_side;    /* 3 na: A vertex against them (side_code). An A */
+                        /* vertex lies in about six of the A faces a B   */
+                        /* face meets.                                   */
 } ov;
 
 static inline uint32_t nxt(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
@@ -68,14 +68,24 @@ static int orient(ov *c, uint32_t p, uint32_t q, uint32_t r)
 }
 
 /* The sign of r against the line p -> q; 0 when r is p or q (the input's
- * sharing), and a flagged 0 when it is exactly on the line otherwise. */
-static int side(ov *c, uint32_t p, uint32_t q, uint32_t r)
+ * sharing), and SIDE_ON when it is exactly on the line otherwise. */
+#define SIDE_ON 2
+static int side_code(ov *c, uint32_t p, uint32_t q, uint32_t r)
 {
     if (r == p || r == q) return 0;
     int s = orient(c, p, q, r);
-    if (!s) c->degenerate = 1;
-    return s;
+    return s ? s : SIDE_ON;
 }
+
+/* The same, SIDE_ON as a 0 that flags the degeneracy */
+static int side_of(ov *c, int code)
+{
+    if (code != SIDE_ON) return code;
+    c->degenerate = 1;
+    return 0;
+}
+
+static int side(ov *c, uint32_t p, uint32_t q, uint32_t r) { return side_of(c, side_code(c, p, q, r)); }
 
 /* Direction p -> x strictly before p -> y counterclockwise (both inside
  * one fan of angle below pi at the boundary vertex p). */
@@ -204,18 +214,11 @@ static int pair_polygon(ov *c, uint32_t fa, uint32_t fb, uint32_t poly[15])
         uint32_t v = a[i];
         int8_t *sv = c->sa_side + 3 * (size_t)v;
         if (c->sa_stamp[v] != fb + 1) {
-            for (int j = 0; j < 3; j++) {
-                int was = c->degenerate;
-                c->degenerate = 0;
-                int s = side(c, b[j], b[(j + 1) % 3], v);
-                sv[j] = (int8_t)(c->degenerate ? 2 : s);
-                c->degenerate = was;
-            }
+            for (int j = 0; j < 3; j++) sv[j] = (int8_t)side_code(c, b[j], b[(j + 1) % 3], v);
             c->sa_stamp[v] = fb + 1;
         }
         for (int j = 0; j < 3; j++) {
-            if (sv[j] == 2) c->degenerate = 1;
-            sA[i][j] = sv[j] == 2 ? 0 : sv[j];
+            sA[i][j] = side_of(c, sv[j]);
             sB[j][i] = side(c, a[i], a[(i + 1) % 3], b[j]);
         }
     }
@@ -510,37 +513,36 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
 
 /* Where to split B's faces between the two ranges so that both walks take
  * about as long: every SPLIT_STRIDE-th face walked on its own first (a
- * sample, about 1/16 of the work, its tables thrown away), the split where
- * the sample's triangles reach half. Any split gives the same overlay (see
- * below); the faces' halves by count left one range with twice the other's
- * work on cid/elephant (1.44 s against 0.87 s). Falls back to the middle. */
+ * sample, about 1/16 of the work, without budget; its tables thrown away),
+ * the split where the sample's triangles reach half. Any split gives the
+ * same overlay (see below); the faces' halves by count left one range with
+ * twice the other's work on cid/elephant (1.44 s against 0.87 s). proto: a
+ * range as set up, nothing walked or allocated yet. Falls back to the
+ * middle. */
 #define SPLIT_STRIDE 16u
 static uint32_t balanced_split(const ov *proto)
 {
     const uint32_t nf = proto->B->nf, ns = (nf + SPLIT_STRIDE - 1) / SPLIT_STRIDE;
-    ov d = *proto;
+    assert(!proto->X && !proto->hkey && !proto->loc);
     sq_overlay T;
     sq_overlay_init(&T);
-    d.X = &T, d.g0 = 0, d.g1 = nf, d.stride = SPLIT_STRIDE, d.max_crossings = 0, d.limit = NULL, d.keep_g = 0;
-    d.hkey = NULL, d.hval = NULL, d.hcap = 0, d.x_g = NULL, d.cap_x = 0;
+    ov d = *proto;
+    d.X = &T, d.g0 = 0, d.g1 = nf, d.stride = SPLIT_STRIDE, d.max_crossings = 0, d.limit = NULL;
     d.loc = malloc((size_t)d.nv * sizeof *d.loc);
     d.bary = malloc(3 * (size_t)d.nv * sizeof *d.bary);
     d.work = calloc((size_t)ns + 1, sizeof *d.work);
-    uint32_t split = nf / 2;
+    uint32_t split = 0;
     if (d.loc && d.bary && d.work) {
         for (uint32_t v = 0; v < d.nv; v++) d.loc[v] = SQ_NONE;
         walk_range(&d);
-        if (d.st == SQ_OK) {
-            uint64_t total = 0, run = 0;
-            for (uint32_t k = 0; k < ns; k++) total += d.work[k];
-            uint32_t k = 0;
-            while (k < ns && 2 * (run + d.work[k]) <= total) run += d.work[k++];
-            if (total) split = k * SPLIT_STRIDE < nf ? k * SPLIT_STRIDE : nf / 2;
-        }
+        uint64_t total = 0, run = 0;
+        for (uint32_t k = 0; k < ns; k++) total += d.work[k];
+        while (d.st == SQ_OK && split < ns && 2 * (run + d.work[split]) <= total) run += d.work[split++];
+        split *= SPLIT_STRIDE;
     }
     free(d.loc), free(d.bary), free(d.work), free(d.hkey), free(d.hval);
     sq_overlay_free(&T);
-    return split ? split : nf / 2;
+    return split > 0 && split < nf ? split : nf / 2;
 }
 
 /* Two ranges of B's faces, [0, s) and [s, nf) (s from balanced_split with
@@ -580,9 +582,9 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
         c[r].cancel = cancel, c[r].limit = limit;
         c[r].stride = 1;
     }
-    c[0].X = out, c[1].X = &X1;
     c[0].g0 = 0, c[0].g1 = c[1].g0 = threads > 1 && B->nf >= 2 * SPLIT_STRIDE ? balanced_split(&c[0]) : B->nf / 2;
     c[1].g1 = B->nf;
+    c[0].X = out, c[1].X = &X1;
     sq_status st = SQ_OK;
     uint32_t *map = NULL;
     out->loc = malloc((size_t)nv * sizeof *out->loc);

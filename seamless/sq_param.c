@@ -63,7 +63,6 @@ typedef struct ctx {
                               /* refined where it walled a cone in; taken    */
                               /* over), or NULL                              */
     int walled;               /* tree qtri: the surface tree left a cone out */
-    uint32_t fan_vertices;    /* the overlay's graded fans (sq_param_fans.c) */
     const sq_param_options *opt; /* never NULL (sq_param_build fills defaults) */
     sq_error *err;
     sq_tsurf S;
@@ -2716,7 +2715,6 @@ static sq_status surface_disk_build(ctx *c, const uint32_t *oseq, surface_disk *
             if (pr == -1) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
             else if (pr) st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the graded fans are no manifold disk");
         }
-        c->fan_vertices = added;
         if (st) goto done;
     }
     st = sq_param_disk_tutte(A->nf, A->tri, A->twin, nbl, na - nbl, A->p3, A->xy, err);
@@ -2807,7 +2805,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     if (cancelled(c)) st = stop_if_cancelled(c);
     if (st) goto done;
     stats->crossings = X.nx;
-    stats->fan_vertices = c->fan_vertices;
+    stats->fan_vertices = A->na - A->ns;
     /* the output: S's vertices, then the fans' and B's interior vertices
      * (ids from ns on), then the crossings */
     const uint32_t ns = A->ns;
@@ -2844,7 +2842,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     int cf_helper = c->opt->threads > 1 && pthread_create(&cf_th, NULL, fill_crossings, &cf) == 0;
     if (!cf_helper) fill_crossings(&cf);
     /* UVs: the boundary's and B's own; A's interior vertices by their B
-     * triangle; crossings along their B edge */
+     * triangle (the crossings': fill_crossings) */
     memcpy(P->uv, buv, 2 * (size_t)nbl * sizeof *P->uv);
     memcpy(P->uv + 2 * (size_t)na, buv + 2 * (size_t)na, 2 * (size_t)(nv - na) * sizeof *P->uv);
     for (uint32_t i = nbl; i < na; i++) {

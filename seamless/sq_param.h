@@ -225,10 +225,10 @@ typedef struct sq_param_stats {
                                             /* map; the fallback's first one, */
                                             /* far less distorted, replaced it */
     uint32_t wall_splits;                   /* tree qtri: input edges split   */
-    uint32_t fan_vertices;                  /* overlay: added by the graded   */
-                                            /* fans (sq_param_grade_fans)     */
                                             /* at their midpoints where the   */
                                             /* cut walled a cone in (0: none) */
+    uint32_t fan_vertices;                  /* overlay: added by the graded   */
+                                            /* fans (sq_param_grade_fans)     */
     int fallback;                           /* 1: the fallback made the map   */
                                             /* (SQ_FALLBACK_AUTO; tree qtri,  */
                                             /* so tree_qtri is set)           */

@@ -72,10 +72,8 @@ int sq_param_pair_twins_threads(uint32_t nf, const uint32_t *tri, uint32_t *twin
         bucket[start[a < b ? a : b]++] = (uint32_t)h;
     }
     /* start[v] is now the end of bucket v */
-    uint32_t split = nv;
-    if (threads > 1)
-        for (split = 0; split < nv && start[split] < nh / 2; split++) {
-        }
+    uint32_t split = threads > 1 ? 0 : nv; /* the first bucket ending past half the halfedges */
+    while (split < nv && start[split] < nh / 2) split++;
     pair_job J[2] = {{tri, start, bucket, twin, 0, split, 0}, {tri, start, bucket, twin, split, nv, 0}};
     pthread_t th;
     int helper = split < nv && pthread_create(&th, NULL, pair_buckets, &J[1]) == 0;

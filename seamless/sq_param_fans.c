@@ -79,12 +79,17 @@ static uint32_t add_vertex(fan_out *o, const double *p)
 
 static const double *vpos(const fan_out *o, uint32_t v) { return o->p3 + 3 * (size_t)v; }
 
+static double dist3(const double *a, const double *b)
+{
+    return sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+}
+
 /* distance of x from the line through a and b (a != b) */
 static double line_dist(const double *a, const double *b, const double *x)
 {
     double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
     double cx = d[1] * e[2] - d[2] * e[1], cy = d[2] * e[0] - d[0] * e[2], cz = d[0] * e[1] - d[1] * e[0];
-    return sqrt(cx * cx + cy * cy + cz * cz) / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    return sqrt(cx * cx + cy * cy + cz * cz) / dist3(a, b);
 }
 
 /* The polygon (x; p[i] .. p[j]) (base p[i..j] on one line, x off it, faces
@@ -105,9 +110,7 @@ static int grade(fan_out *o, const uint32_t *p, uint32_t i, uint32_t j, uint32_t
     }
     uint32_t m = i + (j - i) / 2;
     const double *pi = vpos(o, p[i]), *pj = vpos(o, p[j]), *pm = vpos(o, p[m]), *px = vpos(o, x);
-    double w = sqrt((pj[0] - pi[0]) * (pj[0] - pi[0]) + (pj[1] - pi[1]) * (pj[1] - pi[1]) +
-                    (pj[2] - pi[2]) * (pj[2] - pi[2]));
-    double h = line_dist(pi, pj, px), tau = h > 0 ? FAN_HEIGHT * w / h : 0.5;
+    double w = dist3(pi, pj), h = line_dist(pi, pj, px), tau = h > 0 ? FAN_HEIGHT * w / h : 0.5;
     if (!(tau < 0.5)) tau = 0.5;
     double q[3];
     for (int d = 0; d < 3; d++) q[d] = pm[d] + tau * (px[d] - pm[d]);
@@ -116,6 +119,14 @@ static int grade(fan_out *o, const uint32_t *p, uint32_t i, uint32_t j, uint32_t
     if (add_face(o, p[i], qv, x, fin) || add_face(o, qv, p[j], x, fin)) return -1;
     if (grade(o, p, i, m, qv, fin, depth + 1)) return -1;
     return grade(o, p, m, j, qv, fin, depth + 1);
+}
+
+/* g continues f's fan: a fan face (bcorner: the corner of its base) with
+ * f's apex and f's input face */
+static int same_fan(const uint32_t *tri, const uint32_t *fin, const uint32_t *bcorner, uint32_t f, uint32_t g)
+{
+    return g != SQ_NONE && bcorner[g] != SQ_NONE && fin[g] == fin[f] &&
+           tri[3 * g + (bcorner[g] + 2) % 3] == tri[3 * f + (bcorner[f] + 2) % 3];
 }
 
 sq_status sq_param_grade_fans(uint32_t nbl, uint32_t min_run, const uint32_t *twin, uint32_t *nf_io,
@@ -161,21 +172,18 @@ sq_status sq_param_grade_fans(uint32_t nbl, uint32_t min_run, const uint32_t *tw
      * straight base, from a face whose predecessor is none of them */
     for (uint32_t f = 0; f < nf && st == SQ_OK; f++) {
         if (bcorner[f] == SQ_NONE || dead[f]) continue;
-        uint32_t k = bcorner[f], a = tri[3 * f + k], c = tri[3 * f + (k + 2) % 3];
-        uint32_t g = bend[a];
-        if (g != SQ_NONE && g != f && tri[3 * g + (bcorner[g] + 2) % 3] == c && fin[g] == fin[f]) continue;
+        uint32_t c = tri[3 * f + (bcorner[f] + 2) % 3], g = bend[tri[3 * f + bcorner[f]]];
+        if (g != f && same_fan(tri, fin, bcorner, f, g)) continue;
         /* one run after the other along the fan, a new one where the base bends */
         for (uint32_t h = f; h != SQ_NONE && st == SQ_OK;) {
             uint32_t n = 0, start = h, bent = SQ_NONE;
             pid[0] = tri[3 * h + bcorner[h]];
             while (h != SQ_NONE && n < nbl) {
-                uint32_t kh = bcorner[h], b = tri[3 * h + (kh + 1) % 3];
-                if (tri[3 * h + (kh + 2) % 3] != c || fin[h] != fin[f] || dead[h]) break;
+                uint32_t b = tri[3 * h + (bcorner[h] + 1) % 3];
+                if (!same_fan(tri, fin, bcorner, f, h) || dead[h]) break;
                 if (n >= 1) { /* straight: b on the line of the run's first piece */
                     const double *p0 = vpos(&o, pid[0]), *p1 = vpos(&o, pid[1]), *pb = vpos(&o, b);
-                    double l = sqrt((pb[0] - p0[0]) * (pb[0] - p0[0]) + (pb[1] - p0[1]) * (pb[1] - p0[1]) +
-                                    (pb[2] - p0[2]) * (pb[2] - p0[2]));
-                    if (!(line_dist(p0, p1, pb) <= 1e-9 * l)) {
+                    if (!(line_dist(p0, p1, pb) <= 1e-9 * dist3(p0, pb))) {
                         bent = h;
                         break;
                     }

@@ -244,10 +244,10 @@ static void test_obj_text(void **state)
     io_rmdir(dir);
 }
 
-/* Face lines are written a few at a time through one buffer; a polygon too
- * large for it takes the token-by-token path. Both give the same text as
- * formatting each line on its own (checked against snprintf here), for
- * many faces (the buffer flushed between faces) and a 1000-gon. */
+/* Face lines are written a few at a time through one buffer, flushed
+ * between tokens when full: the same text as formatting each line on its
+ * own (checked against snprintf here), for many faces and for a 1000-gon
+ * longer than the buffer. */
 static void test_obj_face_buffer(void **state)
 {
     (void)state;

@@ -57,8 +57,10 @@ static void make_disk(disk *D, uint32_t sides, const uint32_t *pieces, const uin
     D->side_first = malloc(((size_t)sides + 1) * sizeof *D->side_first);
     assert_non_null(D->p3), assert_non_null(D->tri), assert_non_null(D->fin), assert_non_null(D->twin);
     double cx[64], cy[64], a = 1 + urand(), b = 0.5 + urand();
+    /* consecutive corners less than 1.3 * 2 pi / 3 apart: every side at
+     * least 0.1 from the centre, where the apex is (within 0.015) */
     for (uint32_t s = 0; s < sides; s++) {
-        double t = 2 * TEST_PI * (s + 0.2 + 0.6 * urand()) / sides;
+        double t = 2 * TEST_PI * (s + 0.35 + 0.3 * urand()) / sides;
         cx[s] = a * cos(t), cy[s] = b * sin(t);
     }
     /* boundary ids counterclockwise, side by side */
@@ -83,7 +85,7 @@ static void make_disk(disk *D, uint32_t sides, const uint32_t *pieces, const uin
     }
     D->side_first[sides] = nbl;
     uint32_t apex = nbl;
-    lift(0.05 * urand(), 0.05 * urand(), D->p3 + 3 * (size_t)apex);
+    lift(0.01 * urand(), 0.01 * urand(), D->p3 + 3 * (size_t)apex);
     D->area = 0;
     for (uint32_t s = 0, f = 0; s < sides; s++)
         for (uint32_t k = D->side_first[s]; k < D->side_first[s + 1]; k++, f++) {
@@ -92,6 +94,7 @@ static void make_disk(disk *D, uint32_t sides, const uint32_t *pieces, const uin
             D->fin[f] = fin_of[s];
             const double *p = D->p3 + 3 * (size_t)k, *q = D->p3 + 3 * (size_t)k1, *c = D->p3 + 3 * (size_t)apex;
             D->area += 0.5 * ((q[0] - p[0]) * (c[1] - p[1]) - (q[1] - p[1]) * (c[0] - p[0]));
+            assert_true(sq_orient2d(p, q, c) > 0); /* a valid disk to start from */
         }
     assert_int_equal(sq_param_pair_twins(D->nf, D->tri, D->twin), 0);
 }
