@@ -49,6 +49,7 @@ struct sq_spd {
     cholmod_common common; /* owned: CHOLMOD's options, workspace, status */
     cholmod_factor *factor;
     uint32_t n;
+    int xtype; /* CHOLMOD_REAL, or CHOLMOD_COMPLEX (sq_hpd_factor) */
 };
 
 struct sq_lu {
@@ -63,9 +64,9 @@ struct sq_lu {
 
 /* ---- argument checks shared by both factorizations ---------------------- */
 
-static sq_status check_triplets(const char *who, uint32_t n, size_t nnz, const uint32_t *rows,
-                                const uint32_t *cols, const double *vals, void *out,
-                                sq_error *err)
+static sq_status check_triplets_x(const char *who, uint32_t n, size_t nnz, const uint32_t *rows,
+                                  const uint32_t *cols, const double *vals, size_t stride, void *out,
+                                  sq_error *err)
 {
     if (!out) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: output pointer is NULL", who);
     if (n == 0) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: matrix size n is 0", who);
@@ -83,12 +84,19 @@ static sq_status check_triplets(const char *who, uint32_t n, size_t nnz, const u
             return sq_error_set(err, SQ_ERR_ARGUMENT,
                                 "%s: triplet %zu has index (%u, %u) outside the %u x %u matrix",
                                 who, k, rows[k], cols[k], n, n);
-        if (!isfinite(vals[k]))
+        if (!isfinite(vals[stride * k]) || !isfinite(vals[stride * k + stride - 1]))
             return sq_error_set(err, SQ_ERR_ARGUMENT,
                                 "%s: triplet %zu at (%u, %u) has a non-finite value", who, k,
                                 rows[k], cols[k]);
     }
     return SQ_OK;
+}
+
+static sq_status check_triplets(const char *who, uint32_t n, size_t nnz, const uint32_t *rows,
+                                const uint32_t *cols, const double *vals, void *out,
+                                sq_error *err)
+{
+    return check_triplets_x(who, n, nnz, rows, cols, vals, 1, out, err);
 }
 
 static sq_status check_solve(const char *who, const void *f, uint32_t nrhs, const double *b,
@@ -174,8 +182,8 @@ static void set_cholmod_options(cholmod_common *c)
 static sq_status check_pivots(const char *who, const cholmod_factor *l, const double *diag,
                               sq_error *err)
 {
-    assert(l->is_ll && l->xtype == CHOLMOD_REAL);
-    const size_t n = l->n;
+    assert(l->is_ll && (l->xtype == CHOLMOD_REAL || l->xtype == CHOLMOD_COMPLEX));
+    const size_t n = l->n, sx = l->xtype == CHOLMOD_COMPLEX ? 2 : 1; /* L's diagonal is real */
     const int *perm = l->Perm;
     const double *lx = l->x;
     const double tolerance = (double)(n + 1) * DBL_EPSILON;
@@ -189,7 +197,7 @@ static sq_status check_pivots(const char *who, const cholmod_factor *l, const do
             const size_t rows = (size_t)(pi[s + 1] - pi[s]);
             for (int k = super[s]; k < super[s + 1]; k++) {
                 const size_t j = (size_t)(k - super[s]);
-                const double lkk = lx[(size_t)px[s] + j * rows + j];
+                const double lkk = lx[sx * ((size_t)px[s] + j * rows + j)];
                 const double a = diag[perm ? perm[k] : k];
                 const double ratio = lkk * lkk / a;
                 if (!(ratio >= worst_ratio)) { /* NaN counts as worst */
@@ -202,7 +210,7 @@ static sq_status check_pivots(const char *who, const cholmod_factor *l, const do
         /* Simplicial: the diagonal is the first entry of each column. */
         const int *p = l->p;
         for (size_t k = 0; k < n; k++) {
-            const double lkk = lx[p[k]];
+            const double lkk = lx[sx * (size_t)p[k]];
             const double a = diag[perm ? perm[k] : (int)k];
             const double ratio = lkk * lkk / a;
             if (!(ratio >= worst_ratio)) {
@@ -222,24 +230,26 @@ static sq_status check_pivots(const char *who, const cholmod_factor *l, const do
     return SQ_OK;
 }
 
-sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
-                        const double *vals, sq_spd **out, sq_error *err)
+/* sq_spd_factor (xtype CHOLMOD_REAL: one value per triplet) and
+ * sq_hpd_factor (CHOLMOD_COMPLEX: two, real and imaginary part). */
+static sq_status factor_x(const char *who, uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                          const double *vals, int xtype, sq_spd **out, sq_error *err)
 {
-    static const char who[] = "sq_spd_factor";
-    sq_status st = check_triplets(who, n, nnz, rows, cols, vals, out, err);
+    const size_t sx = xtype == CHOLMOD_COMPLEX ? 2 : 1;
+    if (out) *out = NULL;
+    sq_status st = check_triplets_x(who, n, nnz, rows, cols, vals, sx, out, err);
     if (st != SQ_OK) return st;
-    *out = NULL;
 
     sq_spd *f = calloc(1, sizeof *f);
     if (!f) return sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
-    f->n = n;
+    f->n = n, f->xtype = xtype;
     if (!cholmod_start(&f->common)) {
         free(f);
         return sq_error_set(err, SQ_ERR_SOLVER, "%s: cholmod_start failed", who);
     }
     set_cholmod_options(&f->common);
     cholmod_common *c = &f->common;
-    if (n < SPD_SIMPLICIAL_BELOW) c->supernodal = CHOLMOD_SIMPLICIAL;
+    if (sx * n < SPD_SIMPLICIAL_BELOW) c->supernodal = CHOLMOD_SIMPLICIAL;
 
     /* Keep the lower triangle only: CHOLMOD would otherwise transpose the
      * upper entries and add them in. */
@@ -248,7 +258,7 @@ sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint
 
     cholmod_sparse *a = NULL;
     double *diag = calloc(n, sizeof *diag); /* diagonal of A, duplicates summed */
-    cholmod_triplet *t = cholmod_allocate_triplet(n, n, lower, -1, CHOLMOD_REAL, c);
+    cholmod_triplet *t = cholmod_allocate_triplet(n, n, lower, -1, xtype, c);
     st = diag ? cholmod_check(who, "allocate_triplet", t != NULL, c, err)
               : sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
     if (st == SQ_OK) {
@@ -259,9 +269,9 @@ sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint
             if (rows[k] < cols[k]) continue;
             ti[m] = (int)rows[k];
             tj[m] = (int)cols[k];
-            tx[m] = vals[k];
+            for (size_t q = 0; q < sx; q++) tx[sx * m + q] = vals[sx * k + q];
             m++;
-            if (rows[k] == cols[k]) diag[rows[k]] += vals[k];
+            if (rows[k] == cols[k]) diag[rows[k]] += vals[sx * k]; /* real on a Hermitian diagonal */
         }
         assert(m == lower);
         t->nnz = m;
@@ -302,15 +312,27 @@ sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint
     return SQ_OK;
 }
 
+sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                        const double *vals, sq_spd **out, sq_error *err)
+{
+    return factor_x("sq_spd_factor", n, nnz, rows, cols, vals, CHOLMOD_REAL, out, err);
+}
+
+sq_status sq_hpd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                        const double *vals, sq_spd **out, sq_error *err)
+{
+    return factor_x("sq_hpd_factor", n, nnz, rows, cols, vals, CHOLMOD_COMPLEX, out, err);
+}
+
 sq_status sq_spd_solve(sq_spd *f, uint32_t nrhs, const double *b, double *x, sq_error *err)
 {
     static const char who[] = "sq_spd_solve";
     sq_status st = check_solve(who, f, nrhs, b, x, err);
     if (st != SQ_OK || nrhs == 0) return st;
     cholmod_common *c = &f->common;
-    const size_t count = (size_t)f->n * nrhs;
+    const size_t count = (size_t)f->n * nrhs * (f->xtype == CHOLMOD_COMPLEX ? 2 : 1);
 
-    cholmod_dense *bd = cholmod_allocate_dense(f->n, nrhs, f->n, CHOLMOD_REAL, c);
+    cholmod_dense *bd = cholmod_allocate_dense(f->n, nrhs, f->n, f->xtype, c);
     st = cholmod_check(who, "allocate_dense", bd != NULL, c, err);
     if (st != SQ_OK) return st;
     memcpy(bd->x, b, count * sizeof *b);

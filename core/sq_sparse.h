@@ -21,7 +21,17 @@ typedef struct sq_lu sq_lu;     /* LU factorization (UMFPACK)         */
  * both: entries with row < col are ignored (the lower triangle is used). */
 sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
                         const double *vals, sq_spd **out, sq_error *err);
-/* Solves A X = B for nrhs columns stored one after another (n each). */
+/* Hermitian positive definite complex matrix of size n: vals holds two
+ * doubles per triplet (real, imaginary part); the lower triangle is used
+ * (entries with row < col are ignored), the upper is its conjugate. The
+ * diagonal's imaginary parts must be 0. Half the unknowns and about half
+ * the work of the real system of size 2n that a complex-linear least
+ * squares problem would otherwise give (docs/solvers.md). */
+sq_status sq_hpd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                        const double *vals, sq_spd **out, sq_error *err);
+/* Solves A X = B for nrhs columns stored one after another (n each; with
+ * sq_hpd_factor, n complex numbers each, interleaved real and imaginary
+ * part). */
 sq_status sq_spd_solve(sq_spd *f, uint32_t nrhs, const double *b, double *x, sq_error *err);
 void sq_spd_free(sq_spd *f);
 

@@ -16,49 +16,59 @@
 #include "sq_sparse.h"
 #include "sq_valence_order.h"
 
+/* Complex triplets of the Hermitian normal equations: v holds (re, im). */
 typedef struct trip {
     uint32_t *r, *c;
     double *v;
     size_t n, cap;
 } trip;
 
-static int trip_add(trip *T, uint32_t r, uint32_t c, double v)
+static int trip_add(trip *T, uint32_t r, uint32_t c, double re, double im)
 {
-    if (r < c) return 0; /* lower triangle only (sq_spd_factor) */
+    if (r < c) return 0; /* lower triangle only (sq_hpd_factor) */
     if (T->n == T->cap) {
         size_t cap = T->cap ? 2 * T->cap : 1024;
         uint32_t *r2 = realloc(T->r, cap * sizeof *r2);
         if (r2) T->r = r2;
         uint32_t *c2 = realloc(T->c, cap * sizeof *c2);
         if (c2) T->c = c2;
-        double *v2 = realloc(T->v, cap * sizeof *v2);
+        double *v2 = realloc(T->v, 2 * cap * sizeof *v2);
         if (v2) T->v = v2;
         if (!r2 || !c2 || !v2) return -1;
         T->cap = cap;
     }
-    T->r[T->n] = r, T->c[T->n] = c, T->v[T->n] = v, T->n++;
+    T->r[T->n] = r, T->c[T->n] = c, T->v[2 * T->n] = re, T->v[2 * T->n + 1] = im, T->n++;
     return 0;
 }
 
-/* adds w (row . u - rhs)^2 to the normal equations */
-static int add_row(trip *T, double *b, const uint32_t *idx, const double *coef, int k, double rhs,
+/* adds w |row . z - rhs|^2 (complex coefficients cf[2i], cf[2i+1]) to the
+ * normal equations: A(i, j) += w conj(cf_i) cf_j, b(i) += w conj(cf_i) rhs */
+static int add_row(trip *T, double *b, const uint32_t *idx, const double *cf, int k, double rr, double ri,
                    double w)
 {
     for (int i = 0; i < k; i++) {
-        b[idx[i]] += w * coef[i] * rhs;
-        for (int j = 0; j < k; j++)
-            if (trip_add(T, idx[i], idx[j], w * coef[i] * coef[j])) return -1;
+        const double ar = cf[2 * i], ai = -cf[2 * i + 1]; /* conj(cf_i) */
+        b[2 * idx[i]] += w * (ar * rr - ai * ri), b[2 * idx[i] + 1] += w * (ar * ri + ai * rr);
+        for (int j = 0; j < k; j++) {
+            const double br = cf[2 * j], bi = cf[2 * j + 1];
+            if (trip_add(T, idx[i], idx[j], w * (ar * br - ai * bi), w * (ar * bi + ai * br))) return -1;
+        }
     }
     return 0;
 }
 
+/* The energy is complex-linear in the vertex positions z = x + iy and the
+ * faces' similarities a (every residual below is a complex-linear form), so
+ * its normal equations are one Hermitian system of nv + nf complex
+ * unknowns: the same minimizer as the real system of 2 nv + 2 nf, in about
+ * half the time (sq_hpd_factor). */
 sq_status sq_guide_metapolygon_layout(const sq_metapolygon *P, const double *c, uint32_t npinned,
                                       const uint32_t *pin_vert, double *xy, sq_error *err)
 {
-    const uint32_t nv = P->nv, nf = P->nf, n = 2 * nv + 2 * nf;
+    const uint32_t nv = P->nv, nf = P->nf, n = nv + nf;
     trip T = {0};
-    double *b = calloc((size_t)n + 1, sizeof *b), *x = malloc(((size_t)n + 1) * sizeof *x);
-    uint32_t *fv = NULL, *ix = NULL, *iy = NULL;
+    double *b = calloc(2 * (size_t)n + 2, sizeof *b), *x = malloc((2 * (size_t)n + 2) * sizeof *x);
+    uint32_t *fv = NULL, *ix = NULL;
     double *cf = NULL;
     sq_spd *F = NULL;
     sq_status st = SQ_OK;
@@ -66,48 +76,44 @@ sq_status sq_guide_metapolygon_layout(const sq_metapolygon *P, const double *c, 
     for (uint32_t f = 0; f < nf; f++)
         if (P->f_valence[f] > maxval) maxval = P->f_valence[f];
     fv = malloc(((size_t)maxval + 1) * sizeof *fv);
-    ix = malloc(((size_t)maxval + 1) * sizeof *ix), iy = malloc(((size_t)maxval + 1) * sizeof *iy);
-    cf = malloc(((size_t)maxval + 1) * sizeof *cf);
-    if (!b || !x || !fv || !ix || !iy || !cf) goto nomem;
+    ix = malloc(((size_t)maxval + 1) * sizeof *ix);
+    cf = malloc((2 * (size_t)maxval + 2) * sizeof *cf);
+    if (!b || !x || !fv || !ix || !cf) goto nomem;
     uint32_t irr = 0;
     for (uint32_t f = 0; f < nf; f++) {
         const uint32_t k = P->f_valence[f];
         uint32_t h = P->f_he[f];
         for (uint32_t j = 0; j < k; j++, h = P->he_next[h]) fv[j] = P->he_vert[h];
-        const uint32_t ax = 2 * nv + 2 * f, ay = ax + 1;
+        const uint32_t a = nv + f;
         for (uint32_t j = 0; j < k; j++) {
             uint32_t p = fv[j], q = fv[(j + 1) % k];
             double t0 = 2 * SQ_GUIDE_PI * j / k, t1 = 2 * SQ_GUIDE_PI * (j + 1) / k;
             double dx = cos(t1) - cos(t0), dy = sin(t1) - sin(t0);
-            /* (x_q - x_p) - a (dx, dy) = 0, a complex */
-            uint32_t i1[4] = {2 * q, 2 * p, ax, ay};
-            double c1[4] = {1, -1, -dx, dy};
-            uint32_t i2[4] = {2 * q + 1, 2 * p + 1, ax, ay};
-            double c2[4] = {1, -1, -dy, -dx};
-            if (add_row(&T, b, i1, c1, 4, 0, 1) || add_row(&T, b, i2, c2, 4, 0, 1)) goto nomem;
+            /* (z_q - z_p) - a d = 0, d = dx + i dy */
+            uint32_t i1[3] = {q, p, a};
+            double c1[6] = {1, 0, -1, 0, -dx, -dy};
+            if (add_row(&T, b, i1, c1, 3, 0, 0, 1)) goto nomem;
         }
         /* a small pull towards one common similarity keeps the system
          * definite before two faces are pinned */
-        if (trip_add(&T, ax, ax, 1e-3) || trip_add(&T, ay, ay, 1e-3)) goto nomem;
-        b[ax] += 1e-3 * 0.1;
+        if (trip_add(&T, a, a, 1e-3, 0)) goto nomem;
+        b[2 * a] += 1e-3 * 0.1;
         if (!pin_vert && k != 4 && irr < npinned) { /* the barycentre at c[irr] */
-            for (uint32_t j = 0; j < k; j++) ix[j] = 2 * fv[j], iy[j] = 2 * fv[j] + 1, cf[j] = 1.0 / k;
-            if (add_row(&T, b, ix, cf, (int)k, c[2 * irr], 10) || add_row(&T, b, iy, cf, (int)k, c[2 * irr + 1], 10))
-                goto nomem;
+            for (uint32_t j = 0; j < k; j++) ix[j] = fv[j], cf[2 * j] = 1.0 / k, cf[2 * j + 1] = 0;
+            if (add_row(&T, b, ix, cf, (int)k, c[2 * irr], c[2 * irr + 1], 10)) goto nomem;
         }
         if (k != 4) irr++;
     }
     for (uint32_t j = 0; pin_vert && j < npinned; j++) {
-        uint32_t ix = 2 * pin_vert[j], iy = ix + 1;
-        double one = 1;
-        if (add_row(&T, b, &ix, &one, 1, c[2 * j], 10) || add_row(&T, b, &iy, &one, 1, c[2 * j + 1], 10))
-            goto nomem;
+        uint32_t i = pin_vert[j];
+        double one[2] = {1, 0};
+        if (add_row(&T, b, &i, one, 1, c[2 * j], c[2 * j + 1], 10)) goto nomem;
     }
     if (!pin_vert && irr < npinned) {
         st = sq_error_set(err, SQ_ERR_INTERNAL, "guidance: %u irregular faces, expected %u", irr, npinned);
         goto done;
     }
-    st = sq_spd_factor(n, T.n, T.r, T.c, T.v, &F, err);
+    st = sq_hpd_factor(n, T.n, T.r, T.c, T.v, &F, err);
     if (st == SQ_OK) st = sq_spd_solve(F, 1, b, x, err);
     if (st) goto done;
     memcpy(xy, x, 2 * (size_t)nv * sizeof *xy);
@@ -123,7 +129,6 @@ done:
     free(x);
     free(fv);
     free(ix);
-    free(iy);
     free(cf);
     return st;
 }

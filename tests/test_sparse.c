@@ -318,6 +318,133 @@ static void test_spd_rejects_roundoff_pivot(void **state)
     trip_free(&t);
 }
 
+/* ---- Hermitian positive definite (CHOLMOD, complex) ---------------------- */
+
+/* Magnetic Laplacian of a side x side grid: edge (u, v), u > v, weight w and
+ * phase t gives A(u,u) += w, A(v,v) += w, A(u,v) = -w e^{it} (A(v,u) its
+ * conjugate), plus shift times the identity: Hermitian, positive definite
+ * for shift > 0. Lower triangle only, two doubles per triplet (trip_add
+ * stores the real part, im[] the imaginary part). */
+typedef struct ctriplets {
+    triplets t;
+    double *v; /* 2 per triplet */
+} ctriplets;
+
+static void ctrip_add(ctriplets *c, uint32_t i, uint32_t j, double re, double im)
+{
+    trip_add(&c->t, i, j, re);
+    c->v = realloc(c->v, 2 * c->t.cap * sizeof *c->v);
+    assert_non_null(c->v);
+    c->v[2 * (c->t.count - 1)] = re, c->v[2 * (c->t.count - 1) + 1] = im;
+}
+
+static void magnetic_laplacian(ctriplets *c, uint32_t side, double shift)
+{
+    trip_init(&c->t, side * side);
+    c->v = NULL;
+    for (uint32_t r = 0; r < side; r++)
+        for (uint32_t q = 0; q < side; q++) {
+            const uint32_t v = r * side + q;
+            for (int dir = 0; dir < 2; dir++) {
+                if ((dir == 0 && q + 1 == side) || (dir == 1 && r + 1 == side)) continue;
+                const uint32_t u = dir ? v + side : v + 1;
+                const double w = 1.0 + 0.5 * sin(0.37 * v + dir), t = 0.9 * r - 0.4 * q + dir;
+                ctrip_add(c, u, u, w, 0);
+                ctrip_add(c, v, v, w, 0);
+                ctrip_add(c, u, v, -w * cos(t), -w * sin(t));
+            }
+            ctrip_add(c, v, v, shift, 0);
+        }
+}
+
+/* y = A x, x and y complex (interleaved), A Hermitian from its lower triangle */
+static void cmatvec(const ctriplets *c, const double *x, double *y)
+{
+    memset(y, 0, 2 * (size_t)c->t.n * sizeof *y);
+    for (size_t k = 0; k < c->t.count; k++) {
+        const uint32_t i = c->t.rows[k], j = c->t.cols[k];
+        const double ar = c->v[2 * k], ai = c->v[2 * k + 1];
+        if (i < j) continue;
+        y[2 * i] += ar * x[2 * j] - ai * x[2 * j + 1], y[2 * i + 1] += ar * x[2 * j + 1] + ai * x[2 * j];
+        if (i != j) /* conj(a) x_i */
+            y[2 * j] += ar * x[2 * i] + ai * x[2 * i + 1], y[2 * j + 1] += ar * x[2 * i + 1] - ai * x[2 * i];
+    }
+}
+
+/* The complex solve against the known solution, and against the real
+ * system of size 2n with the same minimizer ([re -im; im re] blocks). */
+static void check_hpd(uint32_t side, uint32_t nrhs)
+{
+    ctriplets c;
+    magnetic_laplacian(&c, side, 0.25);
+    const size_t n = c.t.n, m = 2 * n;
+    double *xs = calloc(m * nrhs, sizeof *xs), *b = malloc(m * nrhs * sizeof *b);
+    double *x = malloc(m * nrhs * sizeof *x), *r = malloc(m * sizeof *r), *xr = malloc(m * sizeof *xr);
+    assert_true(xs && b && x && r && xr);
+    for (uint32_t k = 0; k < nrhs; k++) {
+        for (size_t i = 0; i < m; i++) xs[k * m + i] = known(i, k);
+        cmatvec(&c, xs + k * m, b + k * m);
+    }
+    sq_error err;
+    sq_error_clear(&err);
+    sq_spd *f = NULL;
+    assert_int_equal(sq_hpd_factor(c.t.n, c.t.count, c.t.rows, c.t.cols, c.v, &f, &err), SQ_OK);
+    assert_int_equal(sq_spd_solve(f, nrhs, b, x, &err), SQ_OK);
+    sq_spd_free(f);
+    for (uint32_t k = 0; k < nrhs; k++) {
+        assert_true(relative_diff(x + k * m, xs + k * m, m) < 1e-9);
+        cmatvec(&c, x + k * m, r);
+        assert_true(relative_diff(r, b + k * m, m) < 1e-12);
+    }
+    /* the realification: unknowns (re z_i, im z_i) at 2i, 2i+1 */
+    triplets t;
+    trip_init(&t, (uint32_t)m);
+    for (size_t k = 0; k < c.t.count; k++) {
+        const uint32_t i = c.t.rows[k], j = c.t.cols[k];
+        const double ar = c.v[2 * k], ai = c.v[2 * k + 1];
+        trip_add(&t, 2 * i, 2 * j, ar);
+        trip_add(&t, 2 * i + 1, 2 * j + 1, ar);
+        trip_add(&t, 2 * i + 1, 2 * j, ai);
+        if (i != j) trip_add(&t, 2 * i, 2 * j + 1, -ai); /* row > col: kept */
+    }
+    assert_int_equal(sq_spd_factor(t.n, t.count, t.rows, t.cols, t.vals, &f, &err), SQ_OK);
+    assert_int_equal(sq_spd_solve(f, 1, b, xr, &err), SQ_OK);
+    sq_spd_free(f);
+    assert_true(relative_diff(x, xr, m) < 1e-11);
+    trip_free(&t);
+    free(xs), free(b), free(x), free(r), free(xr);
+    trip_free(&c.t);
+    free(c.v);
+}
+
+static void test_hpd_magnetic_laplacian(void **state)
+{
+    (void)state;
+    check_hpd(40, 1);  /* 1,600 unknowns: the simplicial code */
+    check_hpd(40, 2);  /* two right-hand sides */
+    check_hpd(180, 1); /* 32,400 (64,800 real): the supernodal code */
+}
+
+static void test_hpd_rejects(void **state)
+{
+    (void)state;
+    ctriplets c;
+    magnetic_laplacian(&c, 30, -4.0); /* the spectrum starts below 4 */
+    sq_error err;
+    sq_error_clear(&err);
+    sq_spd *f = (sq_spd *)&err;
+    assert_int_equal(sq_hpd_factor(c.t.n, c.t.count, c.t.rows, c.t.cols, c.v, &f, &err), SQ_ERR_SOLVER);
+    assert_null(f);
+    assert_non_null(strstr(err.msg, "not positive definite"));
+    c.v[2 * 5 + 1] = NAN; /* an imaginary part */
+    f = (sq_spd *)&err;
+    assert_int_equal(sq_hpd_factor(c.t.n, c.t.count, c.t.rows, c.t.cols, c.v, &f, &err), SQ_ERR_ARGUMENT);
+    assert_null(f);
+    assert_non_null(strstr(err.msg, "non-finite"));
+    trip_free(&c.t);
+    free(c.v);
+}
+
 /* ---- LU (UMFPACK) --------------------------------------------------------- */
 
 /* Nonsymmetric: grid Laplacian + I with a convection term. */
@@ -620,6 +747,8 @@ int main(void)
         cmocka_unit_test(test_duplicates_summed),
         cmocka_unit_test(test_spd_rejects_indefinite),
         cmocka_unit_test(test_spd_rejects_roundoff_pivot),
+        cmocka_unit_test(test_hpd_magnetic_laplacian),
+        cmocka_unit_test(test_hpd_rejects),
         cmocka_unit_test(test_lu_nonsymmetric),
         cmocka_unit_test(test_lu_singular),
         cmocka_unit_test(test_bad_arguments),
