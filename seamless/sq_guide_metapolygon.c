@@ -195,12 +195,17 @@ sq_status sq_guide_glue_chooser(void *user, const sq_metapolygon *P, uint32_t st
         extend_layout(P, G);
     }
     const double *xy = G->xy;
+    /* the nearest boundary edge, the first in index order among edges
+     * whose distances agree to a relative 1e-9: exact ties are common (a
+     * cone beyond a convex vertex is equally near both its edges) and
+     * must not be decided by the layout's last bits, which another solver
+     * or BLAS changes (mpz/elk's step 6 did) */
     double best = INFINITY;
     for (uint32_t h = 0; h < P->nh; h++) {
         if (P->he_face[h] != SQ_NONE) continue;
         if (sq_metapolygon_predict_quads(P, valence, h) == UINT64_MAX) continue;
         double d = seg_dist2(c + 2 * step, xy + 2 * P->he_vert[h], xy + 2 * P->he_vert[P->he_next[h]]);
-        if (d < best) best = d, *glue_he = h;
+        if (d < best * (1 - 1e-9)) best = d, *glue_he = h;
     }
     if (G->chosen) G->chosen[step] = *glue_he;
     return SQ_OK;
