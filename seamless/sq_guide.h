@@ -102,6 +102,11 @@ typedef struct sq_guide_glue {
     /* optional: once it holds non-zero, the chooser fails with
      * SQ_ERR_SOLVER (another attempt passed: sq_param_attempts.c) */
     const _Atomic int *cancel;
+    /* which of the boundary edges tied for nearest (distances within a
+     * relative 1e-9) is taken: 0 the first in index order; v > 0 the
+     * least of a hash of (edge, v), so every v gives another domain where
+     * ties occur (sq_param's domain variants) */
+    uint32_t variant;
     /* the chooser's cache (zero-initialize; sq_guide_glue_free): above 5000
      * faces the layout is recomputed only when the metapolygon has grown by
      * a quarter, new vertices placed at their neighbours' average between */

@@ -173,6 +173,17 @@ static void extend_layout(const sq_metapolygon *P, sq_guide_glue *G)
     free(sum);
 }
 
+#define GLUE_TIE 1e-9
+
+/* a hash of (h, v) (splitmix64's finalizer) */
+static uint64_t tie_key(uint32_t h, uint32_t v)
+{
+    uint64_t z = ((uint64_t)v << 32 | h) + 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
 sq_status sq_guide_glue_chooser(void *user, const sq_metapolygon *P, uint32_t step, uint32_t valence,
                                 uint32_t *glue_he, sq_error *err)
 {
@@ -195,17 +206,25 @@ sq_status sq_guide_glue_chooser(void *user, const sq_metapolygon *P, uint32_t st
         extend_layout(P, G);
     }
     const double *xy = G->xy;
-    /* the nearest boundary edge, the first in index order among edges
-     * whose distances agree to a relative 1e-9: exact ties are common (a
-     * cone beyond a convex vertex is equally near both its edges) and
-     * must not be decided by the layout's last bits, which another solver
-     * or BLAS changes (mpz/elk's step 6 did) */
+    /* the nearest boundary edge; of edges whose distances agree to a
+     * relative 1e-9 the first in index order (variant 0) or the least
+     * tie_key (G->variant): exact ties are common (a cone beyond a convex
+     * vertex is equally near both its edges) and must not be decided by
+     * the layout's last bits, which another solver or BLAS changes
+     * (mpz/elk's step 6 did) */
     double best = INFINITY;
+    uint64_t best_key = 0;
     for (uint32_t h = 0; h < P->nh; h++) {
         if (P->he_face[h] != SQ_NONE) continue;
-        if (sq_metapolygon_predict_quads(P, valence, h) == UINT64_MAX) continue;
         double d = seg_dist2(c + 2 * step, xy + 2 * P->he_vert[h], xy + 2 * P->he_vert[P->he_next[h]]);
-        if (d < best * (1 - 1e-9)) best = d, *glue_he = h;
+        if (d > best * (1 + GLUE_TIE)) continue;
+        const int tie = d >= best * (1 - GLUE_TIE);
+        if (tie && !G->variant) continue;
+        const uint64_t key = G->variant ? tie_key(h, G->variant) : 0;
+        if (tie && key >= best_key) continue;
+        if (sq_metapolygon_predict_quads(P, valence, h) == UINT64_MAX) continue;
+        if (d < best) best = d;
+        best_key = key, *glue_he = h;
     }
     if (G->chosen) G->chosen[step] = *glue_he;
     return SQ_OK;

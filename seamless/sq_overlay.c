@@ -508,7 +508,7 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
                            const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                            sq_overlay *out, sq_error *err)
 {
-    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 1, NULL, NULL, out, err);
+    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 0, 1, NULL, NULL, out, err);
 }
 
 /* Where to split B's faces between the two ranges so that both walks take
@@ -518,9 +518,9 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * same overlay (see below); the faces' halves by count left one range with
  * twice the other's work on cid/elephant (1.44 s against 0.87 s). proto: a
  * range as set up, nothing walked or allocated yet. Falls back to the
- * middle. */
+ * middle. *sample_nx: the sample's crossings (0 if it failed). */
 #define SPLIT_STRIDE 16u
-static uint32_t balanced_split(const ov *proto)
+static uint32_t balanced_split(const ov *proto, uint32_t *sample_nx)
 {
     const uint32_t nf = proto->B->nf, ns = (nf + SPLIT_STRIDE - 1) / SPLIT_STRIDE;
     assert(!proto->X && !proto->hkey && !proto->loc);
@@ -540,6 +540,7 @@ static uint32_t balanced_split(const ov *proto)
         while (d.st == SQ_OK && split < ns && 2 * (run + d.work[split]) <= total) run += d.work[split++];
         split *= SPLIT_STRIDE;
     }
+    *sample_nx = d.st == SQ_OK ? T.nx : 0;
     free(d.loc), free(d.bary), free(d.work), free(d.hkey), free(d.hval);
     sq_overlay_free(&T);
     return split > 0 && split < nf ? split : nf / 2;
@@ -558,8 +559,8 @@ static uint32_t balanced_split(const ov *proto)
  * crossings too), and the merged count must not exceed it either. */
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
-                                   uint32_t threads, const _Atomic int *cancel, const _Atomic uint64_t *limit,
-                                   sq_overlay *out, sq_error *err)
+                                   uint64_t max_expected, uint32_t threads, const _Atomic int *cancel,
+                                   const _Atomic uint64_t *limit, sq_overlay *out, sq_error *err)
 {
     sq_overlay_init(out);
     if (!xy || !A || !B || nbnd < 3 || na < nbnd || nv < na || !A->nf || !B->nf)
@@ -582,8 +583,26 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
         c[r].cancel = cancel, c[r].limit = limit;
         c[r].stride = 1;
     }
-    c[0].g0 = 0, c[0].g1 = c[1].g0 = threads > 1 && B->nf >= 2 * SPLIT_STRIDE ? balanced_split(&c[0]) : B->nf / 2;
+    /* the sample (with one thread too: the same result, the same
+     * expectation) */
+    uint32_t sample_nx = 0;
+    c[0].g0 = 0, c[0].g1 = c[1].g0 = B->nf >= 2 * SPLIT_STRIDE ? balanced_split(&c[0], &sample_nx) : B->nf / 2;
     c[1].g1 = B->nf;
+    const uint64_t expected = (uint64_t)sample_nx * (SPLIT_STRIDE / 2);
+    /* a lowered budget bounds the expectation too (a quarter above it;
+     * checked again at the end, so that when it is lowered does not
+     * matter) */
+    uint64_t L = limit ? atomic_load(limit) : 0;
+    if (L && (!max_expected || L + L / 4 < max_expected)) max_expected = L + L / 4;
+    if (max_expected && expected > max_expected) {
+        out->expected = expected;
+        return sq_error_set(err, SQ_ERR_SOLVER,
+                            "overlay: about %llu crossings of surface and domain edges expected (%u in a "
+                            "sample of every %u-th domain triangle), more than %llu: the two disk maps "
+                            "differ too much",
+                            (unsigned long long)expected, sample_nx, SPLIT_STRIDE,
+                            (unsigned long long)max_expected);
+    }
     c[0].X = out, c[1].X = &X1;
     sq_status st = SQ_OK;
     uint32_t *map = NULL;
@@ -615,6 +634,14 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
     /* range 1's crossings: range 0's id, or the next; the budget as it is
      * now (limit may have been lowered after range 0's last look) */
     max_crossings = budget_now(max_crossings, limit);
+    L = limit ? atomic_load(limit) : 0;
+    if (L && expected > L + L / 4) {
+        st = sq_error_set(err, SQ_ERR_SOLVER,
+                          "overlay: about %llu crossings of surface and domain edges expected, more than %llu: "
+                          "the two disk maps differ too much",
+                          (unsigned long long)expected, (unsigned long long)(L + L / 4));
+        goto done;
+    }
     uint32_t n0 = out->nx, stop_g = c[0].stop_g;
     if (stop_g == SQ_NONE && max_crossings && n0 > max_crossings) stop_g = c[0].g1 - 1;
     map = malloc(((size_t)X1.nx + 1) * sizeof *map);
@@ -694,5 +721,6 @@ done:
     free(map);
     sq_overlay_free(&X1);
     if (st) sq_overlay_free(out);
+    out->expected = expected;
     return st;
 }

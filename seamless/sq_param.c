@@ -105,6 +105,9 @@ typedef struct ctx {
     const _Atomic uint64_t *limit; /* the overlay's crossings allowed, set by  */
                                    /* another attempt while this one runs (0: */
                                    /* none; may be NULL)                      */
+    uint64_t gate;              /* domain variants: the overlay's expected    */
+                                /* crossings above which this domain is given */
+                                /* up for the next variant (0: none)          */
     uint32_t *h_uv;             /* S.nh: corner_uv of every halfedge once the */
                                 /* interior map of a round is done; else NULL */
     uint32_t *face_limit;       /* O->cut.nf or NULL: cell size limits per quad */
@@ -2797,11 +2800,25 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     sq_overlay_mesh Am = {A->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
     progress(c, "overlay", 0.75);
     /* in two threads where the caller allows them (the same result) */
-    st = sq_overlay_build_threads(nbl, na, nv, xy, &Am, &Bm,
-                                  c->opt->max_crossings ? c->opt->max_crossings
-                                  : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
-                                                        : steiner_budget(c),
+    const uint64_t budget = c->opt->max_crossings ? c->opt->max_crossings
+                            : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
+                                                  : steiner_budget(c);
+    /* given up at once where the sample expects far more than the budget
+     * or more than the variants' gate; not the budget that another
+     * attempt may lower while this one runs (limit: the walk keeps that
+     * one, exactly), since when it does must not change the result */
+    uint64_t max_expected = budget + budget / 4;
+    const int gating = c->gate && c->gate < max_expected;
+    if (gating) max_expected = c->gate;
+    st = sq_overlay_build_threads(nbl, na, nv, xy, &Am, &Bm, budget, max_expected,
                                   c->opt->threads ? c->opt->threads : 1, c->cancel, c->limit, &X, err);
+    stats->crossings_expected = X.expected;
+    stats->gated = st == SQ_ERR_SOLVER && gating && X.expected > c->gate;
+    if (st == SQ_ERR_SOLVER && !gating && X.expected > max_expected) /* name the budget, not its 5/4 */
+        sq_error_set(err, st,
+                     "overlay: more than %llu crossings of surface and domain edges (about %llu expected by a "
+                     "sample of the domain's triangles): the two disk maps differ too much",
+                     (unsigned long long)budget, (unsigned long long)X.expected);
     if (cancelled(c)) st = stop_if_cancelled(c);
     if (st) goto done;
     stats->crossings = X.nx;
@@ -2994,8 +3011,9 @@ static sq_status overlay_after_cells(ctx *c, const before_cells *saved, const in
  * the cone set has passed its checks), with up to opt->refine rounds of
  * step 7c. */
 static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                            const _Atomic int *cancel, const _Atomic uint64_t *limit, sq_cut_graph *given_G,
-                            sq_cut_graph *walled_G, sq_param *out, sq_param_stats *stats, sq_error *err)
+                            const _Atomic int *cancel, const _Atomic uint64_t *limit, uint32_t variant,
+                            uint64_t gate, sq_cut_graph *given_G, sq_cut_graph *walled_G, sq_param *out,
+                            sq_param_stats *stats, sq_error *err)
 {
     double t_start = sq_now();
     memset(stats, 0, sizeof *stats);
@@ -3004,6 +3022,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     ctx c;
     memset(&c, 0, sizeof c);
     c.m = m, c.opt = opt, c.err = err, c.cancel = cancel, c.limit = limit, c.given_G = given_G;
+    c.glue.variant = variant, c.gate = gate;
     c.keep_flips = opt->allow_flips;
     c.root_step = c.root_surface = SQ_NONE;
     c.S_valence = valence;
@@ -3178,14 +3197,15 @@ done:
  * are free, so the tree passes between them. The map of that mesh is
  * one of the input's: the midpoints lie on its edges and count as
  * Steiner vertices, its faces name their input faces. */
-sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                              const _Atomic int *cancel, const _Atomic uint64_t *limit, sq_param *out,
-                              sq_param_stats *stats, sq_error *err)
+static sq_status build_walled(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                              const _Atomic int *cancel, const _Atomic uint64_t *limit, uint32_t variant,
+                              uint64_t gate, sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     sq_cut_graph G;
     sq_cut_graph_init(&G);
     const int refine = opt->tree == SQ_TREE_QTRI && sq_mesh_genus(m) >= 2;
-    sq_status st = build_once(m, valence, opt, cancel, limit, NULL, refine ? &G : NULL, out, stats, err);
+    sq_status st = build_once(m, valence, opt, cancel, limit, variant, gate, NULL, refine ? &G : NULL, out, stats,
+                              err);
     if (st != SQ_ERR_SOLVER || !G.he_cut) {
         sq_cut_graph_free(&G);
         return st;
@@ -3206,7 +3226,7 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
      * kept), on m2's halfedges */
     free(G.he_cut);
     G.he_cut = cut2;
-    st = build_once(&m2, val2, opt, cancel, limit, &G, NULL, out, stats, err);
+    st = build_once(&m2, val2, opt, cancel, limit, variant, gate, &G, NULL, out, stats, err);
     sq_cut_graph_free(&G);
     stats->verts_in = m->nv, stats->faces_in = m->nf, stats->wall_splits = nsplit;
     if (st == SQ_OK) {
@@ -3220,5 +3240,52 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
     }
     sq_mesh_free(&m2);
     free(val2), free(fparent);
+    return st;
+}
+
+/* Domain variants (tree qtri, genus >= 1): Algorithm 1's glue choices
+ * meet exact ties (a cone beyond a convex vertex of the growing
+ * metapolygon is as near to both its edges), and which edge takes the
+ * cone changes the whole domain after it: the overlay's crossings on
+ * mpz/elk went from 0.66 to 3.1 million over 9 ways of breaking the ties
+ * (session 16, docs/param.md). So where the overlay's sample expects more
+ * than SQ_VARIANT_PER_FACE crossings per input face, the attempt gives
+ * that domain up (about 1/16 of the walk's time) and builds the next
+ * variant (sq_guide_glue.variant: another tie order), up to
+ * SQ_VARIANTS; if none is under it, the one expecting the fewest is built
+ * again without the gate. The same cut graph every time: this is one
+ * attempt of sq_param_build. */
+sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                              const _Atomic int *cancel, const _Atomic uint64_t *limit, sq_param *out,
+                              sq_param_stats *stats, sq_error *err)
+{
+    const uint32_t nvar = opt->variants ? opt->variants : SQ_VARIANTS;
+    if (opt->tree != SQ_TREE_QTRI || sq_mesh_genus(m) < 1 || opt->max_crossings || nvar < 2)
+        return build_walled(m, valence, opt, cancel, limit, 0, 0, out, stats, err);
+    const uint64_t gate = (opt->variant_gate ? opt->variant_gate : SQ_VARIANT_PER_FACE) * (uint64_t)m->nf;
+    uint64_t best = UINT64_MAX;
+    uint32_t best_v = 0, v = 0;
+    sq_status st = SQ_OK;
+    for (; v < nvar; v++) {
+        if (v && opt->progress) {
+            char msg[160];
+            snprintf(msg, sizeof msg, "domain variant %u (the overlay expected %llu crossings)", v + 1,
+                     (unsigned long long)stats->crossings_expected);
+            opt->progress(opt->progress_ctx, msg, 0.1);
+        }
+        st = build_walled(m, valence, opt, cancel, limit, v, gate, out, stats, err);
+        if (st != SQ_ERR_SOLVER || !stats->gated || (cancel && atomic_load(cancel))) break;
+        /* another attempt set a budget: this one may only replace its map
+         * with the first domain's (sq_param_attempts.c, replaces_cells),
+         * which was given up */
+        if (limit && atomic_load(limit)) break;
+        if (stats->crossings_expected < best) best = stats->crossings_expected, best_v = v;
+    }
+    if (v == nvar) { /* none under the gate */
+        if (opt->progress) opt->progress(opt->progress_ctx, "domain variant with the fewest crossings expected", 0.1);
+        st = build_walled(m, valence, opt, cancel, limit, best_v, 0, out, stats, err);
+        v = best_v;
+    }
+    stats->domain_variant = v;
     return st;
 }

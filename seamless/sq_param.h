@@ -119,6 +119,15 @@ typedef struct sq_param_options {
      * cid/elephant 30%), the same guarantees. SQ_FANS_OFF: the fans as
      * they are. */
     int fans;
+    /* Tree qtri (genus >= 1, so the fallback): Algorithm 1's ties broken
+     * another way (sq_guide_glue.variant), up to `variants` domains per
+     * attempt while the overlay's sample expects more than variant_gate
+     * crossings per input face; where none is under it, the one expecting
+     * the fewest (docs/param.md, "Domain variants"). 0: SQ_VARIANTS and
+     * SQ_VARIANT_PER_FACE; variants 1: the first domain only. Not with
+     * max_crossings given. */
+    uint32_t variants;
+    uint32_t variant_gate;
 } sq_param_options;
 
 /* SQ_INTERIOR_OVERLAY triangulates Omega in its unit squares, and where
@@ -134,6 +143,11 @@ enum { SQ_FANS_ON = 0, SQ_FANS_OFF = 1 };
 #define SQ_FALLBACK_PER_FACE 400u
 #define SQ_REPLACE_PER_FACE 50u
 #define SQ_QTRI_MAX_CROSSINGS 10000000u
+/* tree qtri: domains per attempt (Algorithm 1's ties broken otherwise)
+ * while the overlay's sample expects more than SQ_VARIANT_PER_FACE
+ * crossings per input face (sq_param_build_once; docs/param.md) */
+#define SQ_VARIANTS 4u
+#define SQ_VARIANT_PER_FACE 100u
 
 #define SQ_PARAM_REFINE 8
 
@@ -220,6 +234,13 @@ typedef struct sq_param_stats {
     uint32_t qtri_verts;                    /* its vertices, with the tree's  */
     uint32_t qtri_steiner;                  /* Steiner vertices among them    */
     uint64_t crossings;                     /* the overlay's (step 7')        */
+    uint64_t crossings_expected;            /* by its sample (sq_overlay.h)   */
+    int gated;                              /* 1: the attempt gave its domain */
+                                            /* up on crossings_expected (the  */
+                                            /* domain variants' gate)         */
+    uint32_t domain_variant;                /* tree qtri: Algorithm 1's tie   */
+                                            /* order of the result's domain   */
+                                            /* (0: the first)                 */
     int replaced_cells;                     /* 1: the default choices' first  */
                                             /* attempt passed with the cells' */
                                             /* map; the fallback's first one, */

@@ -88,14 +88,19 @@ static void job_progress(void *ctx, const char *stage, double f)
 
 /* Whether the fallback's first attempt (list position 1) replaces the
  * first's: that passed with the cells' map (no overlay), and the
- * fallback's passes, if it has ended, within replace_limit crossings.
- * Before it ends: whether it may still. */
+ * fallback's passes, if it has ended, within replace_limit crossings,
+ * with its first domain (its variants stop once the limit is set) and an
+ * expectation at most a quarter above the limit (as the overlay requires
+ * once the limit is set: the same whenever it was set). Before it ends:
+ * whether it may still. */
 static int replaces_cells(const pool *P)
 {
     const job *A = &P->jobs[0], *B = &P->jobs[1];
-    if (!P->replace_limit || P->n < 2 || !B->heavy) return 0;
+    const uint64_t L = P->replace_limit;
+    if (!L || P->n < 2 || !B->heavy) return 0;
     if (!A->done || A->st != SQ_OK || A->stats.overlay) return 0;
-    return !B->done || (B->st == SQ_OK && B->stats.crossings <= P->replace_limit);
+    return !B->done || (B->st == SQ_OK && B->stats.crossings <= L && B->stats.domain_variant == 0 &&
+                        B->stats.crossings_expected <= L + L / 4);
 }
 
 static void *worker(void *arg)

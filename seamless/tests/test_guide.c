@@ -369,7 +369,7 @@ static void test_algorithm1_domains(void **state)
             cxy[2 * i] = xy[2 * ord[i]], cxy[2 * i + 1] = xy[2 * ord[i] + 1];
         }
         uint32_t chosen[512];
-        sq_guide_glue gg = {cxy, chosen, NULL, NULL, 0, 0, 0};
+        sq_guide_glue gg = {cxy, chosen, NULL, 0, NULL, 0, 0, 0};
         sq_build_options bopt = {NULL, sq_guide_glue_chooser, &gg};
         sq_domain_options dopt = {NULL, SQ_NONE, &bopt, 1, 0};
         sq_domain D;

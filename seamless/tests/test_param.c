@@ -462,6 +462,53 @@ static void test_replaces_cells(void **state)
     unload(&M);
 }
 
+/* Domain variants (sq_param_build_once, tree qtri): with a gate every
+ * domain misses, the attempt builds `variants` domains (Algorithm 1's ties
+ * broken another way each time) and keeps the one whose overlay expects
+ * the fewest crossings, so the result expects no more than the first
+ * domain alone (and fewer on mpz/holes3, whose variants 2 to 6 all expect
+ * fewer: 53,984 to 64,760 against 64,864), and a gate nothing misses
+ * gives the first domain's map, bit for bit. */
+static void test_domain_variants(void **state)
+{
+    (void)state;
+    model M;
+    load(&M, "mpz/holes3");
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    opt.tree = SQ_TREE_QTRI, opt.attempts = 1, opt.seed = 1;
+    sq_param P0, P;
+    sq_param_stats s0, st;
+    sq_error err = {0};
+    sq_param_init(&P0), sq_param_init(&P);
+    opt.variants = 1; /* the first domain only */
+    if (sq_param_build(&M.m, M.val, &opt, &P0, &s0, &err)) fail_msg("holes3, one domain: %s", err.msg);
+    assert_int_equal(s0.domain_variant, 0);
+    assert_true(s0.crossings_expected > 0);
+    opt.variants = 4, opt.variant_gate = 1000000; /* nothing misses it */
+    if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("holes3, high gate: %s", err.msg);
+    assert_int_equal(st.domain_variant, 0);
+    assert_true(P.nf == P0.nf && P.nv == P0.nv && P.nuv == P0.nuv);
+    assert_memory_equal(P.tri, P0.tri, 3 * (size_t)P.nf * sizeof *P.tri);
+    assert_memory_equal(P.uv, P0.uv, 2 * (size_t)P.nuv * sizeof *P.uv);
+    sq_param_free(&P);
+    opt.variant_gate = 1; /* every domain misses it */
+    uint64_t last = s0.crossings_expected;
+    for (uint32_t k = 2; k <= 4; k += 2) {
+        opt.variants = k;
+        if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("holes3, %u variants: %s", k, err.msg);
+        assert_true(st.domain_variant < k);
+        assert_true(st.crossings_expected <= last); /* more domains, never worse */
+        last = st.crossings_expected;
+        assert_int_equal(sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err), SQ_OK);
+        if (k == 4) assert_referee_passes(&M, &P, "holes3 (the best of 4 domain variants)");
+        sq_param_free(&P);
+    }
+    assert_true(last < s0.crossings_expected);
+    sq_param_free(&P0);
+    unload(&M);
+}
+
 static const char *models[] = {"mpz/block",   "mpz/cup",        "mpz/elk",      "mpz/fandisk",
                                "mpz/femur",   "mpz/fertility_tri", "mpz/genus3", "mpz/helmet",
                                "mpz/holes3",  "mpz/homer",      "mpz/knot1",    "mpz/rocker_arm",
@@ -646,6 +693,7 @@ int main(void)
         cmocka_unit_test(test_fallback_threads),
         cmocka_unit_test(test_split_walls),
         cmocka_unit_test(test_replaces_cells),
+        cmocka_unit_test(test_domain_variants),
         cmocka_unit_test(test_all_models_compatible),
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_bad_cells),
