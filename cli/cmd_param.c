@@ -159,7 +159,7 @@ static void help(FILE *f)
             "                      fallback's first, within 50 crossings per input face,\n"
             "                      replaces it (far less distorted: --json\n"
             "                      \"replaced_cells\"); mpz/elk and cid/elephant pass\n"
-            "                      through the fallback (7 to 10 s, up to 0.9 GB);\n"
+            "                      through the fallback (5 to 8 s, up to 0.8 GB);\n"
             "                      off: none\n"
             "  --fans on|off       on (default): in the overlay, where an input edge on\n"
             "                      the cut is split at many of Omega's boundary points,\n"

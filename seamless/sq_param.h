@@ -108,8 +108,8 @@ typedef struct sq_param_options {
      * the fallback's first attempt goes on, with a crossing budget of
      * SQ_REPLACE_PER_FACE (50) per input face, and its map, far less
      * distorted, replaces the cells' where it passes (replaced_cells). It
-     * passes mpz/elk and cid/elephant, which nothing else does, in 7 to
-     * 10 s (docs/param.md). SQ_FALLBACK_OFF: none. */
+     * passes mpz/elk and cid/elephant, which nothing else does, in 5 to
+     * 8 s (docs/param.md). SQ_FALLBACK_OFF: none. */
     int fallback;
     /* SQ_FANS_ON (default): in the overlay (step 7'), the fans of thin
      * triangles along the cut (an input edge on the cut split at Omega's
