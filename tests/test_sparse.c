@@ -327,21 +327,25 @@ static void test_spd_rejects_roundoff_pivot(void **state)
  * stores the real part, im[] the imaginary part). */
 typedef struct ctriplets {
     triplets t;
-    double *v; /* 2 per triplet */
+    double *v;    /* 2 per triplet */
+    size_t v_cap; /* triplets v has room for */
 } ctriplets;
 
 static void ctrip_add(ctriplets *c, uint32_t i, uint32_t j, double re, double im)
 {
     trip_add(&c->t, i, j, re);
-    c->v = realloc(c->v, 2 * c->t.cap * sizeof *c->v);
-    assert_non_null(c->v);
+    if (c->v_cap < c->t.cap) {
+        c->v = realloc(c->v, 2 * c->t.cap * sizeof *c->v);
+        assert_non_null(c->v);
+        c->v_cap = c->t.cap;
+    }
     c->v[2 * (c->t.count - 1)] = re, c->v[2 * (c->t.count - 1) + 1] = im;
 }
 
 static void magnetic_laplacian(ctriplets *c, uint32_t side, double shift)
 {
     trip_init(&c->t, side * side);
-    c->v = NULL;
+    c->v = NULL, c->v_cap = 0;
     for (uint32_t r = 0; r < side; r++)
         for (uint32_t q = 0; q < side; q++) {
             const uint32_t v = r * side + q;
