@@ -76,7 +76,8 @@ typedef struct sq_param_options {
     /* Crossings of surface and domain edges the overlay (step 7') may make
      * before it gives up (SQ_ERR_SOLVER); 0: the Steiner budget above (with
      * SQ_TREE_QTRI and in the fallback: 400 per input face, at most
-     * 10,000,000, at least the Steiner budget). */
+     * 10,000,000, at least the Steiner budget). The overlay stops at its
+     * sample where that expects more than 5/4 of it (sq_overlay.h). */
     uint64_t max_crossings;
     /* Attempts run at once, each in its own thread (default 1; 0 counts
      * as 1). The result is the same as with 1: the lowest attempt that
