@@ -345,12 +345,15 @@ static void test_layout_single_face(void **state)
 /* Algorithm 1 in the domain construction: random cone sets and random
  * positions in the disk; the domain is valid (sq_domain_verify) and its
  * irregular faces come in the chosen order, so the centre of the j-th one
- * stands for the j-th cone */
+ * stands for the j-th cone; the same with the ties broken by other orders
+ * (sq_guide_glue.variant 1 and 2, sq_param's domain variants), which
+ * choose other edges in some of the cases */
 static void test_algorithm1_domains(void **state)
 {
     (void)state;
     rng_state = 31337;
     const uint32_t cases = long_mode() ? 400 : 40;
+    uint32_t differ = 0;
     for (uint32_t c = 0; c < cases; c++) {
         uint32_t g = 2 + c % 4;
         int32_t v[512];
@@ -368,37 +371,46 @@ static void test_algorithm1_domains(void **state)
             vo[i] = v[ord[i]];
             cxy[2 * i] = xy[2 * ord[i]], cxy[2 * i + 1] = xy[2 * ord[i] + 1];
         }
-        uint32_t chosen[512];
-        sq_guide_glue gg = {cxy, chosen, NULL, 0, NULL, 0, 0, 0};
-        sq_build_options bopt = {NULL, sq_guide_glue_chooser, &gg};
-        sq_domain_options dopt = {NULL, SQ_NONE, &bopt, 1, 0};
-        sq_domain D;
-        if (sq_domain_build(g, vo, n, &dopt, &D, &err)) fail_msg("case %u genus %u: %s", c, g, err.msg);
-        if (sq_domain_verify(&D, vo, n, &err)) fail_msg("case %u: verify: %s", c, err.msg);
-        uint32_t j = 0;
-        for (uint32_t f = 0; f < D.meta.nf; f++)
-            if (D.meta.f_valence[f] != 4) {
-                assert_true(j < D.ncones);
-                assert_int_equal(D.meta.f_valence[f], D.order[j]);
-                j++;
-            }
-        assert_int_equal(j, D.ncones);
-        for (uint32_t i = 0; i < D.ncones; i++) assert_int_equal((int32_t)D.order[i], vo[i]);
-        sq_guide_glue_free(&gg);
-        /* the recorded choices rebuild the same metapolygon */
-        chosen[0] = SQ_NONE;
-        sq_build_options again = {chosen, NULL, NULL};
-        sq_domain_options dopt2 = {NULL, D.offset, &again, 1, 0};
-        sq_domain D2;
-        if (sq_domain_build(g, vo, n, &dopt2, &D2, &err)) fail_msg("case %u: rebuild: %s", c, err.msg);
-        assert_int_equal(D2.meta.nf, D.meta.nf);
-        assert_int_equal(D2.meta.nh, D.meta.nh);
-        assert_memory_equal(D2.meta.he_vert, D.meta.he_vert, D.meta.nh * sizeof(uint32_t));
-        assert_memory_equal(D2.meta.he_next, D.meta.he_next, D.meta.nh * sizeof(uint32_t));
-        assert_int_equal(D2.quads_added, D.quads_added);
-        sq_domain_free(&D2);
-        sq_domain_free(&D);
+        uint32_t chosen0[512];
+        int any = 0;
+        for (uint32_t var = 0; var < 3; var++) {
+            uint32_t chosen[512];
+            sq_guide_glue gg = {cxy, chosen, NULL, var, NULL, 0, 0, 0};
+            sq_build_options bopt = {NULL, sq_guide_glue_chooser, &gg};
+            sq_domain_options dopt = {NULL, SQ_NONE, &bopt, 1, 0};
+            sq_domain D;
+            if (sq_domain_build(g, vo, n, &dopt, &D, &err)) fail_msg("case %u genus %u variant %u: %s", c, g, var, err.msg);
+            if (sq_domain_verify(&D, vo, n, &err)) fail_msg("case %u variant %u: verify: %s", c, var, err.msg);
+            uint32_t j = 0;
+            for (uint32_t f = 0; f < D.meta.nf; f++)
+                if (D.meta.f_valence[f] != 4) {
+                    assert_true(j < D.ncones);
+                    assert_int_equal(D.meta.f_valence[f], D.order[j]);
+                    j++;
+                }
+            assert_int_equal(j, D.ncones);
+            for (uint32_t i = 0; i < D.ncones; i++) assert_int_equal((int32_t)D.order[i], vo[i]);
+            sq_guide_glue_free(&gg);
+            if (var == 0) memcpy(chosen0, chosen, n * sizeof *chosen);
+            else if (memcmp(chosen0 + 1, chosen + 1, (n - 1) * sizeof *chosen)) any = 1;
+            /* the recorded choices rebuild the same metapolygon */
+            chosen[0] = SQ_NONE;
+            sq_build_options again = {chosen, NULL, NULL};
+            sq_domain_options dopt2 = {NULL, D.offset, &again, 1, 0};
+            sq_domain D2;
+            if (sq_domain_build(g, vo, n, &dopt2, &D2, &err)) fail_msg("case %u: rebuild: %s", c, err.msg);
+            assert_int_equal(D2.meta.nf, D.meta.nf);
+            assert_int_equal(D2.meta.nh, D.meta.nh);
+            assert_memory_equal(D2.meta.he_vert, D.meta.he_vert, D.meta.nh * sizeof(uint32_t));
+            assert_memory_equal(D2.meta.he_next, D.meta.he_next, D.meta.nh * sizeof(uint32_t));
+            assert_int_equal(D2.quads_added, D.quads_added);
+            sq_domain_free(&D2);
+            sq_domain_free(&D);
+        }
+        differ += (uint32_t)any;
     }
+    assert_true(differ > 0);
+    print_message("algorithm 1: %u of %u cases chose other edges with another tie order\n", differ, cases);
 }
 
 
