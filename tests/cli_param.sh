@@ -178,6 +178,17 @@ want='j["tree_pair"] and j["interior"]=="overlay"' passes_at eight 1 --tree pair
 # genus 2 (eight), genus 3 (genus3), cup (genus 2, 36 cones)
 want='j["tree_qtri"] and not j["tree_pair"] and j["interior"]=="overlay" and j["qtri_verts"] > 0' passes_at eight 1 --tree qtri
 want='j["tree_qtri"] and j["genus"]==3' passes_at genus3 1 --tree qtri
+# domain variants (docs/param.md): with a gate every domain misses, the one
+# whose overlay expects the fewest crossings of 4; on mpz/holes3 that is
+# not the first (whose sample expects 64,864), and the summary says so
+want='j["tree_qtri"] and j["domain_variant"]>0 and 0<j["crossings_expected"]<64864' \
+  passes_at holes3 1 --tree qtri --variants 4 --variant-gate 1
+if "$bin" param "$shared/data/mpz/holes3.obj" --cones "$shared/data/mpz/holes3_Th_hat" -o "$tmp/var.obj" \
+    --tree qtri --attempts 1 --variants 4 --variant-gate 1 2>/dev/null | grep -q "^variant *domain [2-4]: "; then
+  ok
+else
+  bad "holes3 --variants 4 --variant-gate 1: the summary does not name the domain variant"
+fi
 want='j["tree_qtri"]' passes_at cup 1 --tree qtri
 # the text summary names the tree that was built (pair, or the surface's)
 for t in pair-exact surface qtri; do
@@ -345,6 +356,7 @@ expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" 
 expect "--max-crossings 100" 3 "more than 100 crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
   --interior overlay-chords --max-crossings 100 --attempts 1
 expect "bad --max-crossings" 2 "max-crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-crossings 0
+expect "bad --variants" 2 "variants" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --variants 0
 # a device as the output (/dev/null) is written in place, never replaced
 # by a regular file (the staging rename once did that)
 if [ -c /dev/null ]; then
