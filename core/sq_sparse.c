@@ -64,9 +64,10 @@ struct sq_lu {
 
 /* ---- argument checks shared by both factorizations ---------------------- */
 
-static sq_status check_triplets_x(const char *who, uint32_t n, size_t nnz, const uint32_t *rows,
-                                  const uint32_t *cols, const double *vals, size_t stride, void *out,
-                                  sq_error *err)
+/* vals: stride doubles per triplet (1 real; 2 complex: both checked) */
+static sq_status check_triplets(const char *who, uint32_t n, size_t nnz, const uint32_t *rows,
+                                const uint32_t *cols, const double *vals, size_t stride, void *out,
+                                sq_error *err)
 {
     if (!out) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: output pointer is NULL", who);
     if (n == 0) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: matrix size n is 0", who);
@@ -92,12 +93,6 @@ static sq_status check_triplets_x(const char *who, uint32_t n, size_t nnz, const
     return SQ_OK;
 }
 
-static sq_status check_triplets(const char *who, uint32_t n, size_t nnz, const uint32_t *rows,
-                                const uint32_t *cols, const double *vals, void *out,
-                                sq_error *err)
-{
-    return check_triplets_x(who, n, nnz, rows, cols, vals, 1, out, err);
-}
 
 static sq_status check_solve(const char *who, const void *f, uint32_t nrhs, const double *b,
                              const double *x, sq_error *err)
@@ -237,7 +232,7 @@ static sq_status factor_x(const char *who, uint32_t n, size_t nnz, const uint32_
 {
     const size_t sx = xtype == CHOLMOD_COMPLEX ? 2 : 1;
     if (out) *out = NULL;
-    sq_status st = check_triplets_x(who, n, nnz, rows, cols, vals, sx, out, err);
+    sq_status st = check_triplets(who, n, nnz, rows, cols, vals, sx, out, err);
     if (st != SQ_OK) return st;
 
     sq_spd *f = calloc(1, sizeof *f);
@@ -389,7 +384,7 @@ sq_status sq_lu_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint3
                        const double *vals, sq_lu **out, sq_error *err)
 {
     static const char who[] = "sq_lu_factor";
-    sq_status st = check_triplets(who, n, nnz, rows, cols, vals, out, err);
+    sq_status st = check_triplets(who, n, nnz, rows, cols, vals, 1, out, err);
     if (st != SQ_OK) return st;
     *out = NULL;
 

@@ -393,6 +393,32 @@ static uint64_t budget_now(uint64_t max_crossings, const _Atomic uint64_t *limit
     return L && (!max_crossings || L < max_crossings) ? L : max_crossings;
 }
 
+#define SPLIT_STRIDE 16u /* the sample: every 16th of B's faces (balanced_split) */
+
+/* The sample's expectation against the budget it answers to (more than a
+ * quarter above it fails): a lowered limit always, the budget as it
+ * stands (max_crossings, or limit where lower) where max_expected is not
+ * 0; and against max_expected (0: none). Checked before the walk and, for
+ * the limit, again after it, so that when limit is lowered does not
+ * change the outcome. */
+static sq_status check_expected(uint64_t expected, uint32_t sample_nx, uint64_t max_crossings,
+                                uint64_t max_expected, const _Atomic uint64_t *limit, sq_error *err)
+{
+    const uint64_t L = limit ? atomic_load(limit) : 0, b = max_expected ? budget_now(max_crossings, limit) : L;
+    if (b && expected > b + b / 4)
+        return sq_error_set(err, SQ_ERR_SOLVER,
+                            "overlay: more than %llu crossings of surface and domain edges (about %llu expected: "
+                            "%u in a sample of every %u-th domain triangle): the two disk maps differ too much",
+                            (unsigned long long)b, (unsigned long long)expected, sample_nx, SPLIT_STRIDE);
+    if (max_expected && expected > max_expected)
+        return sq_error_set(err, SQ_ERR_SOLVER,
+                            "overlay: about %llu crossings of surface and domain edges expected (%u in a "
+                            "sample of every %u-th domain triangle), more than %llu",
+                            (unsigned long long)expected, sample_nx, SPLIT_STRIDE,
+                            (unsigned long long)max_expected);
+    return SQ_OK;
+}
+
 /* Walks B's faces [c->g0, c->g1) in order: each from a face of A holding
  * its interior vertex, over the faces of A it meets. c->st, c->err: the
  * first failure; c->stop_g: the face after which this range alone had
@@ -519,7 +545,6 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * twice the other's work on cid/elephant (1.44 s against 0.87 s). proto: a
  * range as set up, nothing walked or allocated yet. Falls back to the
  * middle. *sample_nx: the sample's crossings (0 if it failed). */
-#define SPLIT_STRIDE 16u
 static uint32_t balanced_split(const ov *proto, uint32_t *sample_nx)
 {
     const uint32_t nf = proto->B->nf, ns = (nf + SPLIT_STRIDE - 1) / SPLIT_STRIDE;
@@ -546,8 +571,8 @@ static uint32_t balanced_split(const ov *proto, uint32_t *sample_nx)
     return split > 0 && split < nf ? split : nf / 2;
 }
 
-/* Two ranges of B's faces, [0, s) and [s, nf) (s from balanced_split with
- * two threads, nf/2 with one), each walked with its own crossing table,
+/* Two ranges of B's faces, [0, s) and [s, nf) (s from balanced_split,
+ * whatever the threads), each walked with its own crossing table,
  * then range 1's crossings merged into range 0's: a crossing of an edge
  * of B between the ranges is made by both, and keeps
  * range 0's id; range 1's others get the next ids in the order range 1
@@ -589,22 +614,10 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
     c[0].g0 = 0, c[0].g1 = c[1].g0 = B->nf >= 2 * SPLIT_STRIDE ? balanced_split(&c[0], &sample_nx) : B->nf / 2;
     c[1].g1 = B->nf;
     const uint64_t expected = (uint64_t)sample_nx * (SPLIT_STRIDE / 2);
-    /* a lowered budget bounds the expectation too (a quarter above it;
-     * checked again at the end, so that when it is lowered does not
-     * matter) */
-    uint64_t L = limit ? atomic_load(limit) : 0;
-    if (L && (!max_expected || L + L / 4 < max_expected)) max_expected = L + L / 4;
-    if (max_expected && expected > max_expected) {
-        out->expected = expected;
-        return sq_error_set(err, SQ_ERR_SOLVER,
-                            "overlay: about %llu crossings of surface and domain edges expected (%u in a "
-                            "sample of every %u-th domain triangle), more than %llu: the two disk maps "
-                            "differ too much",
-                            (unsigned long long)expected, sample_nx, SPLIT_STRIDE,
-                            (unsigned long long)max_expected);
-    }
+    out->expected = expected;
+    sq_status st = check_expected(expected, sample_nx, max_crossings, max_expected, limit, err);
+    if (st) return st;
     c[0].X = out, c[1].X = &X1;
-    sq_status st = SQ_OK;
     uint32_t *map = NULL;
     out->loc = malloc((size_t)nv * sizeof *out->loc);
     out->bary = calloc(3 * (size_t)nv, sizeof *out->bary);
@@ -634,14 +647,8 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
     /* range 1's crossings: range 0's id, or the next; the budget as it is
      * now (limit may have been lowered after range 0's last look) */
     max_crossings = budget_now(max_crossings, limit);
-    L = limit ? atomic_load(limit) : 0;
-    if (L && expected > L + L / 4) {
-        st = sq_error_set(err, SQ_ERR_SOLVER,
-                          "overlay: about %llu crossings of surface and domain edges expected, more than %llu: "
-                          "the two disk maps differ too much",
-                          (unsigned long long)expected, (unsigned long long)(L + L / 4));
-        goto done;
-    }
+    st = check_expected(expected, sample_nx, max_crossings, 0, limit, err);
+    if (st) goto done;
     uint32_t n0 = out->nx, stop_g = c[0].stop_g;
     if (stop_g == SQ_NONE && max_crossings && n0 > max_crossings) stop_g = c[0].g1 - 1;
     map = malloc(((size_t)X1.nx + 1) * sizeof *map);
@@ -721,6 +728,6 @@ done:
     free(map);
     sq_overlay_free(&X1);
     if (st) sq_overlay_free(out);
-    out->expected = expected;
+    out->expected = expected; /* also on failure (sq_overlay_free cleared it) */
     return st;
 }

@@ -84,21 +84,23 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * the walk stops within 64 of B's faces with SQ_ERR_SOLVER "cancelled".
  * limit (may be NULL): a crossing budget another thread may lower while
  * the walk runs (0: none); where it is below max_crossings it takes its
- * place (read every 64 of B's faces and once more at the end). */
+ * place (read every 64 of B's faces and once more at the end).
+ * Before the walk (with one thread or two alike), every 16th of B's faces
+ * is walked alone, a sample of the work: out->expected = 8 times the
+ * sample's crossings (each edge of B has two faces; within 6% of the
+ * count on the shared models' overlays: ratios 7.6 to 8.5). Where it
+ * exceeds a lowered limit by more than a quarter, or, with max_expected
+ * not 0, the budget as it stands (max_crossings, or limit where lower) by
+ * more than a quarter or max_expected itself (UINT64_MAX: the budget
+ * alone), the call fails at once with SQ_ERR_SOLVER ("expected"), about
+ * 1/16 of the walk's time instead of the walk up to its budget; the
+ * limit's check is repeated at the end, so the outcome does not depend on
+ * when limit was lowered. sq_overlay_build is this with max_expected 0,
+ * no limit, one thread: the sample only splits the walk. */
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                                    uint64_t max_expected, uint32_t threads, const _Atomic int *cancel,
                                    const _Atomic uint64_t *limit, sq_overlay *out, sq_error *err);
-/* Before the walk (with one thread or two alike), every 16th of B's faces
- * is walked alone, a sample of the work: out->expected = 8 times the
- * sample's crossings (each edge of B has two faces; within 6% of the
- * count on the shared models' overlays: ratios 7.6 to 8.5). Where
- * max_expected is not 0 and out->expected exceeds it, the call fails at
- * once with SQ_ERR_SOLVER ("expected"), about 1/16 of the walk's time
- * instead of the walk up to its budget. Where limit is set (when the
- * call starts, or by its end), an expectation more than a quarter above
- * it fails the same way, so the outcome does not depend on when limit
- * was lowered. */
 
 #ifdef __cplusplus
 }

@@ -2803,22 +2803,13 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     const uint64_t budget = c->opt->max_crossings ? c->opt->max_crossings
                             : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
                                                   : steiner_budget(c);
-    /* given up at once where the sample expects far more than the budget
-     * or more than the variants' gate; not the budget that another
-     * attempt may lower while this one runs (limit: the walk keeps that
-     * one, exactly), since when it does must not change the result */
-    uint64_t max_expected = budget + budget / 4;
-    const int gating = c->gate && c->gate < max_expected;
-    if (gating) max_expected = c->gate;
-    st = sq_overlay_build_threads(nbl, na, nv, xy, &Am, &Bm, budget, max_expected,
+    /* given up at once where the sample expects a quarter more than the
+     * budget (the overlay's rule) or more than the variants' gate; a
+     * failure counts as the gate's where the gate is below the former */
+    st = sq_overlay_build_threads(nbl, na, nv, xy, &Am, &Bm, budget, c->gate ? c->gate : UINT64_MAX,
                                   c->opt->threads ? c->opt->threads : 1, c->cancel, c->limit, &X, err);
     stats->crossings_expected = X.expected;
-    stats->gated = st == SQ_ERR_SOLVER && gating && X.expected > c->gate;
-    if (st == SQ_ERR_SOLVER && !gating && X.expected > max_expected) /* name the budget, not its 5/4 */
-        sq_error_set(err, st,
-                     "overlay: more than %llu crossings of surface and domain edges (about %llu expected by a "
-                     "sample of the domain's triangles): the two disk maps differ too much",
-                     (unsigned long long)budget, (unsigned long long)X.expected);
+    stats->gated = st == SQ_ERR_SOLVER && c->gate && c->gate < budget + budget / 4 && X.expected > c->gate;
     if (cancelled(c)) st = stop_if_cancelled(c);
     if (st) goto done;
     stats->crossings = X.nx;
