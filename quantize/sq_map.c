@@ -244,7 +244,8 @@ sq_status sq_map_from_soup(const sq_soup *soup, const sq_mesh *input, const int3
                                     "corner a UV point",
                                     face_where(soup, f, where, sizeof where), f);
             }
-    sq_status st = sq_mesh_from_soup(soup, 0, &out->mesh, err);
+    sq_status st = sq_mesh_from_soup(soup, (flags & SQ_MAP_ALLOW_FLAT_3D) ? SQ_MESH_SKIP_DEGENERATE : 0,
+                                     &out->mesh, err);
     if (st) return st;
     sq_mesh *m = &out->mesh;
     if (input && (st = check_input(soup, m, input, err))) goto fail;

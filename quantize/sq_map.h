@@ -56,7 +56,11 @@ enum {
     SQ_MAP_REQUIRE_EXACT = 1u << 0,
     /* sq_map_check / sq_map_from_soup: also require an integer grid map:
      * integer translations and every cone on an integer point */
-    SQ_MAP_REQUIRE_INTEGER = 1u << 1
+    SQ_MAP_REQUIRE_INTEGER = 1u << 1,
+    /* sq_map_from_soup: accept triangles whose 3D corners are exactly
+     * collinear (a refinement may hold slivers thinner than rounding, as
+     * quantization's split makes; the map itself is checked in UV) */
+    SQ_MAP_ALLOW_FLAT_3D = 1u << 2
 };
 
 /* What sq_map_from_soup found and changed. */

@@ -19,6 +19,7 @@ typedef struct pvert {
     uint8_t kind;     /* 0 face corner, 1 edge crossing, 2 line crossing, 3 centre */
     uint8_t edge;     /* kind 1: the face's edge (corner edge -> edge + 1)      */
     line on;          /* kind 1: the line whose crossing it is                  */
+    uint8_t both;     /* kind 1: two lines cross exactly there: uv is exact     */
     double uv[2];     /* exact where kind 0 and 2; kind 1: on.axis exact        */
     uint32_t support; /* the polygon edge from here to the next: 0..2 the     */
                       /* face's edges, 3 + i its line i                        */
@@ -51,6 +52,8 @@ typedef struct ctx {
     uint32_t *ep_off;   /* nh + 1 (only smaller halfedges have entries) */
     line *ep_line;
     uint32_t *ep_id;
+    line *ep_other;     /* a second line through the point (axis 2: none):   */
+                        /* two lines cross exactly on the edge              */
     growbuf pos;        /* double[3] */
     growbuf tri;        /* uint32_t[3] */
     growbuf tface;      /* uint32_t */
@@ -167,6 +170,7 @@ static sq_status edge_crossings(ctx *C, sq_error *err)
     const sq_mesh *m = C->m;
     growbuf lines = {0, 0, 0, sizeof(line)}, cross = {0, 0, 0, sizeof(ecross)};
     growbuf eline = {0, 0, 0, sizeof(line)}, eid = {0, 0, 0, sizeof(uint32_t)};
+    growbuf eother = {0, 0, 0, sizeof(line)};
     sq_status st = SQ_OK;
     C->ep_off = calloc((size_t)m->nh + 1, sizeof *C->ep_off);
     if (!C->ep_off) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (edge crossings)");
@@ -196,22 +200,28 @@ static sq_status edge_crossings(ctx *C, sq_error *err)
         qsort(cross.p, cross.n, sizeof(ecross), cmp_cross);
         for (size_t i = 0; i < cross.n; i++) {
             ecross *x = (ecross *)cross.p + i;
-            if (i && cmp_cross(x - 1, x) == 0) continue; /* the same point */
+            if (i && cmp_cross(x - 1, x) == 0) { /* the same point */
+                if (x[-1].L.axis != x->L.axis) ((line *)eother.p)[eother.n - 1] = x->L;
+                continue;
+            }
             double s = (x->L.c - a[x->L.axis]) / (b[x->L.axis] - a[x->L.axis]);
             const double *pa = m->pos + 3 * (size_t)m->he_vert[h], *pb = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]];
             double p3[3] = {pa[0] + s * (pb[0] - pa[0]), pa[1] + s * (pb[1] - pa[1]), pa[2] + s * (pb[2] - pa[2])};
             line *dl = gb_push(&eline);
             uint32_t *di = gb_push(&eid);
-            if (!dl || !di || (*di = new_vertex(C, p3)) == UINT32_MAX) {
+            line *db = gb_push(&eother);
+            if (!dl || !di || !db || (*di = new_vertex(C, p3)) == UINT32_MAX) {
                 st = SQ_ERR_NOMEM;
                 break;
             }
+            db->axis = 2, db->c = 0.0;
             *dl = x->L;
         }
     }
     C->ep_off[m->nh] = (uint32_t)eline.n;
     C->ep_line = eline.p;
     C->ep_id = eid.p;
+    C->ep_other = eother.p;
     free(lines.p);
     free(cross.p);
     if (st) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (edge crossings)");
@@ -250,6 +260,13 @@ static sq_status boundary_polygon(const ctx *C, uint32_t f, growbuf *poly)
             q->uv[L.axis] = L.c;
             q->uv[1 - L.axis] = a[1 - L.axis] + s * (b[1 - L.axis] - a[1 - L.axis]);
             q->support = (uint32_t)k;
+            q->both = a[1 - L.axis] == b[1 - L.axis]; /* an edge along a line: exact */
+            line O = C->ep_other[j];
+            if (O.axis != 2) { /* two lines cross exactly here: exact */
+                if (own != h) O = line_to(O, C->M->he_rot[g], C->M->he_t + 2 * (size_t)g);
+                q->uv[O.axis] = O.c;
+                q->both = 1;
+            }
         }
     }
     return SQ_OK;
@@ -303,9 +320,10 @@ static int split_polygon(ctx *C, uint32_t f, const line *lines, uint32_t li, con
                     for (uint32_t e = 0; e < sup; e++) h = m->he_next[h];
                     uint32_t g = m->he_twin[h], own = h < g ? h : g, found = UINT32_MAX;
                     for (uint32_t q = C->ep_off[own]; q < C->ep_off[own + 1]; q++) {
-                        line E = C->ep_line[q];
+                        line E = C->ep_line[q], O = C->ep_other[q];
                         if (own != h) E = line_to(E, C->M->he_rot[g], C->M->he_t + 2 * (size_t)g);
-                        if (E.axis == L.axis && E.c == L.c) found = q;
+                        if (own != h && O.axis != 2) O = line_to(O, C->M->he_rot[g], C->M->he_t + 2 * (size_t)g);
+                        if ((E.axis == L.axis && E.c == L.c) || (O.axis == L.axis && O.c == L.c)) found = q;
                     }
                     if (found == UINT32_MAX) {
                         *st = SQ_ERR_INTERNAL;
@@ -319,6 +337,13 @@ static int split_polygon(ctx *C, uint32_t f, const line *lines, uint32_t li, con
                     X.on = L;
                     X.uv[L.axis] = L.c;
                     X.uv[1 - L.axis] = a[1 - L.axis] + t * (b[1 - L.axis] - a[1 - L.axis]);
+                    X.both = a[1 - L.axis] == b[1 - L.axis];
+                    line O = C->ep_other[found];
+                    if (O.axis != 2) {
+                        if (own != h) O = line_to(O, C->M->he_rot[g], C->M->he_t + 2 * (size_t)g);
+                        X.uv[O.axis] = O.c;
+                        X.both = 1;
+                    }
                 } else { /* the crossing of two lines: exact, one per pair */
                     uint32_t mi = sup - 3, a = mi < li ? mi : li, b = mi < li ? li : mi;
                     line Mline = lines[mi];
@@ -440,7 +465,9 @@ static sq_status emit_cell(ctx *C, uint32_t f, const line *lines, const growbuf 
             uv[2 * c] = v[c]->uv[0], uv[2 * c + 1] = v[c]->uv[1];
             uint8_t e = 0;
             if (v[c]->kind == 0 || v[c]->kind == 2) e = SQ_SPLIT_U_EXACT | SQ_SPLIT_V_EXACT;
-            else if (v[c]->kind == 1) e = v[c]->on.axis == 0 ? SQ_SPLIT_U_EXACT : SQ_SPLIT_V_EXACT;
+            else if (v[c]->kind == 1)
+                e = v[c]->both ? SQ_SPLIT_U_EXACT | SQ_SPLIT_V_EXACT
+                               : v[c]->on.axis == 0 ? SQ_SPLIT_U_EXACT : SQ_SPLIT_V_EXACT;
             ex[c] = e;
             ta[c] = arc[c];
         }
@@ -594,7 +621,7 @@ sq_status sq_map_split(const sq_map *M, const sq_chord *chords, uint32_t n_chord
     }
 done:
     if (st) sq_split_free(out);
-    free(C.chord_off), free(C.chord_idx), free(C.ep_off), free(C.ep_line), free(C.ep_id);
+    free(C.chord_off), free(C.chord_idx), free(C.ep_off), free(C.ep_line), free(C.ep_id), free(C.ep_other);
     free(C.pos.p), free(C.tri.p), free(C.tface.p), free(C.tuv.p), free(C.tex.p), free(C.tarc.p);
     return st;
 }

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sq_mean_value.h"
 #include "sq_patch_embed.h"
 #include "sq_predicates.h"
 #include "sq_sparse.h"
@@ -17,7 +18,8 @@ typedef struct plmap {
 static int cmp_pair(const void *a, const void *b)
 {
     const double *p = a, *q = b;
-    return (p[0] > q[0]) - (p[0] < q[0]);
+    if (p[0] != q[0]) return (p[0] > q[0]) - (p[0] < q[0]);
+    return (p[1] > q[1]) - (p[1] < q[1]);
 }
 
 static double pl_eval(const plmap *F, double x)
@@ -30,20 +32,21 @@ static double pl_eval(const plmap *F, double x)
         if (F->x[mid] <= x) lo = mid;
         else hi = mid;
     }
+    if (F->x[hi] == F->x[lo]) return F->y[lo];
     double w = (x - F->x[lo]) / (F->x[hi] - F->x[lo]);
     return F->y[lo] + w * (F->y[hi] - F->y[lo]);
 }
 
-/* The boundary vertices of one side: key coordinate k (0: u, 1: v) where
- * the other coordinate equals `at`; image coordinate `img` of out_uv. */
-static sq_status side_map(const sq_patch *P, const double *out_uv, int k, double at, int img,
+/* The boundary vertices of one side (bit `side` of fixed): key coordinate
+ * k (0: u, 1: v); image coordinate `img` of out_uv. */
+static sq_status side_map(const sq_patch *P, const double *out_uv, int k, uint8_t side, int img,
                           plmap *F, sq_error *err)
 {
     uint32_t n = 0;
     double *buf = malloc(2 * ((size_t)P->nv + 1) * sizeof *buf);
     if (!buf) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (patch sides)");
     for (uint32_t v = 0; v < P->nv; v++) {
-        if (!P->fixed[v] || P->uv[2 * (size_t)v + (1 - k)] != at) continue;
+        if (!(P->fixed[v] & side)) continue;
         buf[2 * (size_t)n] = P->uv[2 * (size_t)v + k];
         buf[2 * (size_t)n + 1] = out_uv[2 * (size_t)v + img];
         n++;
@@ -66,7 +69,9 @@ static sq_status side_map(const sq_patch *P, const double *out_uv, int k, double
     for (uint32_t i = 0; i < n; i++) {
         F->x[i] = buf[2 * (size_t)i];
         F->y[i] = buf[2 * (size_t)i + 1];
-        if (i && !(F->x[i] > F->x[i - 1] && F->y[i] > F->y[i - 1])) {
+        /* the maps' coordinates agree in order (two vertices closer than
+         * the old coordinates resolve may share one: computed crossings) */
+        if (i && !(F->x[i] >= F->x[i - 1] && F->y[i] > F->y[i - 1])) {
             free(buf);
             return sq_error_set(err, SQ_ERR_INTERNAL,
                                 "patch: boundary vertices at %.17g and %.17g of one side are not "
@@ -93,10 +98,10 @@ static sq_status sweep(const sq_patch *P, double *out_uv, sq_error *err)
     plmap F[4];
     memset(F, 0, sizeof F);
     sq_status st;
-    if ((st = side_map(P, out_uv, 0, 0.0, 0, &F[0], err)) ||  /* bottom: u -> s */
-        (st = side_map(P, out_uv, 0, P->H, 0, &F[1], err)) || /* top                  */
-        (st = side_map(P, out_uv, 1, 0.0, 1, &F[2], err)) ||  /* left: v -> t         */
-        (st = side_map(P, out_uv, 1, P->W, 1, &F[3], err)))   /* right                */
+    if ((st = side_map(P, out_uv, 0, SQ_PATCH_BOTTOM, 0, &F[0], err)) || /* u -> s */
+        (st = side_map(P, out_uv, 0, SQ_PATCH_TOP, 0, &F[1], err)) ||
+        (st = side_map(P, out_uv, 1, SQ_PATCH_LEFT, 1, &F[2], err)) ||   /* v -> t */
+        (st = side_map(P, out_uv, 1, SQ_PATCH_RIGHT, 1, &F[3], err)))
         goto done;
     double a = (double)P->a;
     for (uint32_t v = 0; v < P->nv; v++) {
@@ -114,9 +119,14 @@ done:
     return st;
 }
 
-/* Tutte's map: every free vertex the mean of its neighbours (an edge in two
- * triangles weighs 2, a boundary edge 1: positive and symmetric). */
-sq_status sq_patch_embed_tutte(const sq_patch *P, double *out_uv, sq_error *err)
+/* Tutte's map: every free vertex a positive combination of its
+ * neighbours, the boundary fixed. Mean-value weights (Floater 2003) from
+ * the map's own shape (they reproduce an affine map exactly, so a face
+ * whose boundary moves little keeps its shape), where a triangle is too
+ * thin for them the uniform weight; any positive weights give a bijection
+ * onto a convex boundary. mean_value = 0: uniform weights throughout (a
+ * symmetric system: CHOLMOD), else UMFPACK. */
+static sq_status tutte_solve(const sq_patch *P, double *out_uv, int mean_value, sq_error *err)
 {
     uint32_t *id = malloc(((size_t)P->nv + 1) * sizeof *id), nfree = 0;
     size_t cap = 12 * (size_t)P->nt + 1, nnz = 0;
@@ -124,6 +134,7 @@ sq_status sq_patch_embed_tutte(const sq_patch *P, double *out_uv, sq_error *err)
     double *val = malloc(cap * sizeof *val);
     double *rhs = NULL, *x = NULL;
     sq_spd *f = NULL;
+    sq_lu *lu = NULL;
     sq_status st = SQ_OK;
     if (!id || !ri || !ci || !val) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (patch Tutte map)");
@@ -139,21 +150,41 @@ sq_status sq_patch_embed_tutte(const sq_patch *P, double *out_uv, sq_error *err)
     }
     for (uint32_t t = 0; t < P->nt; t++)
         for (int k = 0; k < 3; k++) {
-            uint32_t i = P->tri[3 * (size_t)t + k], j = P->tri[3 * (size_t)t + (k + 1) % 3];
-            for (int side = 0; side < 2; side++) {
-                uint32_t p = side ? j : i, q = side ? i : j;
-                if (id[p] == UINT32_MAX) continue;
-                ri[nnz] = ci[nnz] = id[p], val[nnz++] = 1.0;
-                if (id[q] != UINT32_MAX) {
-                    ri[nnz] = id[p], ci[nnz] = id[q], val[nnz++] = -1.0;
+            uint32_t i = P->tri[3 * (size_t)t + k];
+            if (id[i] == UINT32_MAX) continue;
+            uint32_t nb[2] = {P->tri[3 * (size_t)t + (k + 1) % 3], P->tri[3 * (size_t)t + (k + 2) % 3]};
+            double half_tan = 0;
+            if (mean_value) {
+                double pi[3] = {P->uv[2 * (size_t)i], P->uv[2 * (size_t)i + 1], 0};
+                double pa[3] = {P->uv[2 * (size_t)nb[0]], P->uv[2 * (size_t)nb[0] + 1], 0};
+                double pb[3] = {P->uv[2 * (size_t)nb[1]], P->uv[2 * (size_t)nb[1] + 1], 0};
+                half_tan = sq_half_tan(pi, pa, pb);
+            }
+            for (int e = 0; e < 2; e++) {
+                uint32_t j = nb[e];
+                double w = 1.0;
+                if (mean_value) {
+                    double d = hypot(P->uv[2 * (size_t)j] - P->uv[2 * (size_t)i],
+                                     P->uv[2 * (size_t)j + 1] - P->uv[2 * (size_t)i + 1]);
+                    w = half_tan / d;
+                    if (!(w > 0) || !isfinite(w)) w = 1.0;
+                }
+                ri[nnz] = ci[nnz] = id[i], val[nnz++] = w;
+                if (id[j] != UINT32_MAX) {
+                    ri[nnz] = id[i], ci[nnz] = id[j], val[nnz++] = -w;
                 } else {
-                    rhs[id[p]] += out_uv[2 * (size_t)q];
-                    rhs[nfree + id[p]] += out_uv[2 * (size_t)q + 1];
+                    rhs[id[i]] += w * out_uv[2 * (size_t)j];
+                    rhs[nfree + id[i]] += w * out_uv[2 * (size_t)j + 1];
                 }
             }
         }
-    if ((st = sq_spd_factor(nfree, nnz, ri, ci, val, &f, err))) goto done;
-    if ((st = sq_spd_solve(f, 2, rhs, x, err))) goto done;
+    if (mean_value) {
+        if ((st = sq_lu_factor(nfree, nnz, ri, ci, val, &lu, err))) goto done;
+        if ((st = sq_lu_solve(lu, 2, rhs, x, err))) goto done;
+    } else {
+        if ((st = sq_spd_factor(nfree, nnz, ri, ci, val, &f, err))) goto done;
+        if ((st = sq_spd_solve(f, 2, rhs, x, err))) goto done;
+    }
     for (uint32_t v = 0; v < P->nv; v++)
         if (id[v] != UINT32_MAX) {
             out_uv[2 * (size_t)v] = x[id[v]];
@@ -161,8 +192,14 @@ sq_status sq_patch_embed_tutte(const sq_patch *P, double *out_uv, sq_error *err)
         }
 done:
     sq_spd_free(f);
+    sq_lu_free(lu);
     free(id), free(ri), free(ci), free(val), free(rhs), free(x);
     return st;
+}
+
+sq_status sq_patch_embed_tutte(const sq_patch *P, double *out_uv, sq_error *err)
+{
+    return tutte_solve(P, out_uv, 1, err);
 }
 
 sq_status sq_patch_embed(const sq_patch *P, double *out_uv, int *method, sq_error *err)
@@ -177,8 +214,12 @@ sq_status sq_patch_embed(const sq_patch *P, double *out_uv, int *method, sq_erro
         if (method) *method = SQ_PATCH_SWEEP;
         return SQ_OK;
     }
-    if ((st = sq_patch_embed_tutte(P, out_uv, err))) return st;
+    if ((st = tutte_solve(P, out_uv, 1, err))) return st;
     uint32_t bad2 = count_flips(P, out_uv);
+    if (bad2) { /* rounding in a badly conditioned mean-value system */
+        if ((st = tutte_solve(P, out_uv, 0, err))) return st;
+        bad2 = count_flips(P, out_uv);
+    }
     if (bad2)
         return sq_error_set(err, SQ_ERR_SOLVER,
                             "patch %lld x %lld: %u of %u triangles flip under the sweep and %u "

@@ -20,10 +20,13 @@
  *     when every side is scaled alike). Triangles are mapped by their
  *     vertices, so a triangle much larger than the map's variation can
  *     still flip: every triangle is checked with the exact predicate.
- *  2. Where one flips: Tutte's barycentric map (uniform weights, boundary
- *     fixed on the convex rectangle), bijective for a triangulated disk
- *     whose boundary is mapped onto a convex polygon in order (Tutte 1963,
- *     Floater 2003), solved by CHOLMOD, then checked exactly again.
+ *  2. Where one flips: Tutte's map (every free vertex a positive
+ *     combination of its neighbours, boundary fixed on the convex
+ *     rectangle), bijective for a triangulated disk whose boundary is
+ *     mapped onto a convex polygon in order (Tutte 1963, Floater 2003).
+ *     Mean-value weights from the map's own shape (UMFPACK), which keep it
+ *     where the boundary moves affinely; uniform weights (CHOLMOD) if
+ *     rounding still flips a triangle. Checked exactly again.
  *
  * Cost: O(nv log nv) for the sweep; one sparse Cholesky of the free
  * vertices for Tutte. A patch that neither gives positive triangles is
@@ -47,8 +50,12 @@ typedef struct sq_patch {
     const uint32_t *tri;  /* 3 nt, counterclockwise (positive in uv)          */
     double W, H;          /* the face's size in the map                       */
     int64_t a, b;         /* its integer size                                 */
-    const uint8_t *fixed; /* nv: 1 for boundary vertices (new UV given)       */
+    const uint8_t *fixed; /* nv: 0 inside; on the boundary (new UV given) the */
+                          /* sides the vertex lies on, SQ_PATCH_BOTTOM | ...   */
+                          /* (a corner has two)                               */
 } sq_patch;
+
+enum { SQ_PATCH_BOTTOM = 1, SQ_PATCH_RIGHT = 2, SQ_PATCH_TOP = 4, SQ_PATCH_LEFT = 8 };
 
 enum { SQ_PATCH_SWEEP = 1, SQ_PATCH_TUTTE = 2 };
 
@@ -57,8 +64,8 @@ enum { SQ_PATCH_SWEEP = 1, SQ_PATCH_TUTTE = 2 };
  * *method receives SQ_PATCH_SWEEP or SQ_PATCH_TUTTE. */
 sq_status sq_patch_embed(const sq_patch *P, double *out_uv, int *method, sq_error *err);
 
-/* Step 2 alone (the fallback): Tutte's map with the same boundary; the
- * caller checks the orientation. */
+/* Step 2 alone (the fallback, mean-value weights): Tutte's map with the
+ * same boundary; the caller checks the orientation. */
 sq_status sq_patch_embed_tutte(const sq_patch *P, double *out_uv, sq_error *err);
 
 #ifdef __cplusplus

@@ -66,7 +66,8 @@ static void make(gen *G, uint32_t nx, uint32_t ny, double W, double H, int64_t a
             G->uv[2 * v + 1] = j == ny ? H : y * H;
             if (i == 0) G->uv[2 * v] = 0.0;
             if (j == 0) G->uv[2 * v + 1] = 0.0;
-            G->fixed[v] = bi || bj;
+            G->fixed[v] = (uint8_t)((j == 0 ? SQ_PATCH_BOTTOM : 0) | (i == nx ? SQ_PATCH_RIGHT : 0) |
+                                    (j == ny ? SQ_PATCH_TOP : 0) | (i == 0 ? SQ_PATCH_LEFT : 0));
             if (!G->fixed[v]) continue;
             /* images: bottom/top by their shear, left/right linear */
             double s = j == 0 ? side_image(x, (double)a, shear_bottom)

@@ -1,0 +1,159 @@
+/* seamquad: quantization driver (sq_quantize.h): T-mesh, split, layout,
+ * integer lengths, embedding. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sq_clock.h"
+#include "sq_quantize.h"
+#include "sq_quantize_internal.h"
+#include "sq_tmesh.h"
+#include "sq_tmesh_lengths.h"
+
+static sq_status check_options(const sq_quantize_options *opt, sq_error *err)
+{
+    if (!opt) return sq_error_set(err, SQ_ERR_ARGUMENT, "quantize: no options");
+    if (opt->quads != 0 && !(opt->quads >= 1 && opt->quads <= 1e8))
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "quantize: the quad count must be between 1 and 1e8 (got %g)", opt->quads);
+    if (opt->quads == 0 && !(opt->edge_length > 0 && isfinite(opt->edge_length)))
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "quantize: give a quad count or a positive edge length (got %g)",
+                            opt->edge_length);
+    if (opt->targets != SQ_TARGETS_SURFACE && opt->targets != SQ_TARGETS_MAP)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "quantize: unknown target kind %d", opt->targets);
+    return SQ_OK;
+}
+
+sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n_chords,
+                             const sq_quantize_options *opt, sq_map *igm, sq_quantize_stats *stats,
+                             sq_error *err)
+{
+    sq_quantize_stats local;
+    if (!stats) stats = &local;
+    memset(stats, 0, sizeof *stats);
+    double t0 = sq_now();
+    sq_status st = check_options(opt, err);
+    if (st) return st;
+    memset(igm, 0, sizeof *igm);
+    sq_split S;
+    sq_qlayout L;
+    memset(&L, 0, sizeof L);
+    int64_t *length = NULL;
+    double *target = NULL;
+    if ((st = sq_map_split(M, chords, n_chords, &S, err))) return st;
+    double t1 = sq_now();
+    stats->seconds_split = t1 - t0;
+    stats->split_vertices = S.nv;
+    stats->split_triangles = S.nt;
+    if ((st = sq_qlayout_build(M, &S, &L, err))) goto done;
+    double t2 = sq_now();
+    stats->seconds_layout = t2 - t1;
+    stats->faces = L.np;
+    stats->arcs = L.na;
+    stats->nodes = 0;
+    for (uint32_t v = 0; v < S.nv; v++) stats->nodes += L.v_node[v];
+    length = malloc(((size_t)L.na + 1) * sizeof *length);
+    target = malloc(((size_t)L.na + 1) * sizeof *target);
+    if (!length || !target) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quantization)");
+        goto done;
+    }
+    const double *len = opt->targets == SQ_TARGETS_MAP ? L.arc_len : L.arc_len3d;
+    double scale = opt->quads > 0 ? 1.0 : 1.0 / opt->edge_length;
+    if (opt->quads > 0) {
+        /* targets normalized so that the map's faces hold about quads quads:
+         * the solver rescales them to the count */
+        double area = 0;
+        for (uint32_t p = 0; p < L.np; p++) {
+            /* each face's area in target units: the product of its bottom's
+             * and its right side's target lengths */
+            double w = 0, h = 0;
+            for (uint32_t k = L.side_off[4 * (size_t)p]; k < L.side_off[4 * (size_t)p + 1]; k++) w += len[L.side_arc[k]];
+            for (uint32_t k = L.side_off[4 * (size_t)p + 1]; k < L.side_off[4 * (size_t)p + 2]; k++) h += len[L.side_arc[k]];
+            area += w * h;
+        }
+        scale = area > 0 ? sqrt(opt->quads / area) : 1.0;
+    }
+    for (uint32_t a = 0; a < L.na; a++) target[a] = fmax(len[a] * scale, 1e-6);
+    sq_tmesh_sides T = {L.np, L.na, L.side_off, L.side_arc, target, NULL, 1};
+    sq_tmesh_lengths_stats ls;
+    memset(&ls, 0, sizeof ls);
+    if (opt->quads > 0)
+        st = sq_tmesh_lengths_for_quads(&T, opt->quads, length, &ls, err);
+    else
+        st = sq_tmesh_lengths(&T, length, &ls, err);
+    if (st) goto done;
+    double t3 = sq_now();
+    stats->seconds_lengths = t3 - t2;
+    stats->min_quads = ls.min_quads;
+    if ((st = sq_qlayout_embed(M, &S, &L, length, igm, &stats->tutte_faces, err))) goto done;
+    stats->seconds_embed = sq_now() - t3;
+    stats->quads = 0;
+    for (uint32_t p = 0; p < L.np; p++) {
+        int64_t a = 0, b = 0;
+        for (uint32_t k = L.side_off[4 * (size_t)p]; k < L.side_off[4 * (size_t)p + 1]; k++) a += length[L.side_arc[k]];
+        for (uint32_t k = L.side_off[4 * (size_t)p + 1]; k < L.side_off[4 * (size_t)p + 2]; k++) b += length[L.side_arc[k]];
+        stats->quads += (double)a * (double)b;
+    }
+    stats->cones = 0;
+    for (uint32_t v = 0; v < M->mesh.nv; v++) stats->cones += M->valence[v] != 4;
+done:
+    free(length), free(target);
+    sq_qlayout_free(&L);
+    sq_split_free(&S);
+    stats->seconds = sq_now() - t0;
+    return st;
+}
+
+/* The T-mesh's pieces as chords: a piece on the line v = c (running along
+ * u) or u = c; an end on a mesh edge extends the chord to the face's
+ * boundary, other ends (vertices, nodes) bound it exactly. */
+static sq_chord *pieces_to_chords(const sq_tmesh *T, uint32_t *n)
+{
+    sq_chord *ch = malloc(((size_t)T->n_pieces + 1) * sizeof *ch);
+    if (!ch) return NULL;
+    uint32_t k = 0;
+    for (uint32_t i = 0; i < T->n_pieces; i++) {
+        const sq_tmesh_piece *P = T->pieces + i;
+        int plus = P->dir == 0 || P->dir == 1;
+        double a = P->from.kind == SQ_TMESH_ON_EDGE ? (plus ? -INFINITY : INFINITY) : P->from.s;
+        double b = P->to.kind == SQ_TMESH_ON_EDGE ? (plus ? INFINITY : -INFINITY) : P->to.s;
+        if (a == b) continue;
+        ch[k].face = P->face;
+        ch[k].axis = (P->dir & 1) ? 0 : 1;
+        ch[k].c = P->c;
+        ch[k].lo = fmin(a, b);
+        ch[k].hi = fmax(a, b);
+        k++;
+    }
+    *n = k;
+    return ch;
+}
+
+sq_status sq_quantize(const sq_map *M, const sq_quantize_options *opt, sq_map *igm,
+                      sq_quantize_stats *stats, sq_error *err)
+{
+    sq_quantize_stats local;
+    if (!stats) stats = &local;
+    memset(stats, 0, sizeof *stats);
+    sq_status st = check_options(opt, err);
+    if (st) return st;
+    double t0 = sq_now();
+    sq_tmesh T;
+    if ((st = sq_tmesh_build(M, &T, NULL, err))) return st;
+    stats->seconds_tmesh = sq_now() - t0;
+    uint32_t n = 0;
+    sq_chord *ch = pieces_to_chords(&T, &n);
+    if (!ch) {
+        sq_tmesh_free(&T);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quantization chords)");
+    }
+    double tt = stats->seconds_tmesh;
+    st = sq_quantize_chords(M, ch, n, opt, igm, stats, err);
+    stats->seconds_tmesh = tt;
+    stats->seconds += tt;
+    free(ch);
+    sq_tmesh_free(&T);
+    return st;
+}

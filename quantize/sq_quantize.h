@@ -1,0 +1,72 @@
+/* seamquad: quantization: a seamless map becomes an integer-grid map at the
+ * user's scale (docs/quantize.md).
+ *
+ * Steps, each its own file:
+ *  1. the T-mesh (sq_tmesh.h): separatrices traced from the cones, exactly;
+ *  2. the map's triangles split along them (sq_map_split.h), and the
+ *     T-mesh's rectangles, arcs and sides read off the split
+ *     (sq_quantize_layout.c);
+ *  3. integer arc lengths (sq_tmesh_lengths.h): every T-mesh face gets
+ *     integer sides with equal opposite sides, close to targets scaled to
+ *     the requested size;
+ *  4. every face re-embedded onto its integer rectangle (sq_patch_embed.h)
+ *     and the result checked exactly as an integer-grid map: rotations by
+ *     k x 90 degrees plus integer translations, positive triangles, cones on
+ *     integer points (sq_quantize_embed.c).
+ *
+ * Guarantees: the result passes sq_map_check with SQ_MAP_REQUIRE_INTEGER,
+ * or the call fails with the reason; every arc has length >= 1, so no two
+ * nodes (cones, T-junctions) of the T-mesh merge and no face collapses. */
+#ifndef SQ_QUANTIZE_H
+#define SQ_QUANTIZE_H
+
+#include <stdint.h>
+
+#include "sq_error.h"
+#include "sq_map.h"
+#include "sq_map_split.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum {
+    SQ_TARGETS_SURFACE = 0, /* arc targets from their lengths on the surface */
+    SQ_TARGETS_MAP = 1      /* from their lengths in the map                 */
+};
+
+typedef struct sq_quantize_options {
+    double quads;       /* requested quad count (> 0), or 0 to use:          */
+    double edge_length; /* requested quad edge length on the surface (> 0)   */
+    int targets;        /* SQ_TARGETS_SURFACE (default) or SQ_TARGETS_MAP     */
+} sq_quantize_options;
+
+typedef struct sq_quantize_stats {
+    uint32_t cones;
+    uint32_t nodes, arcs, faces;      /* the T-mesh read off the split       */
+    uint32_t split_vertices, split_triangles;
+    uint32_t tutte_faces;             /* faces placed by Tutte's map         */
+    double quads;                     /* quads of the integer-grid map       */
+    double min_quads;                 /* the fewest the T-mesh allows (for a */
+                                      /* quad target; 0 otherwise)          */
+    double seconds_tmesh, seconds_split, seconds_layout, seconds_lengths, seconds_embed;
+    double seconds;
+} sq_quantize_stats;
+
+/* The integer-grid map of the exact map M (sq_map_check passes) at the
+ * requested size, from its cones' separatrices. *igm is a refinement of M
+ * (its first vertices are M's). stats may be NULL. */
+sq_status sq_quantize(const sq_map *M, const sq_quantize_options *opt, sq_map *igm,
+                      sq_quantize_stats *stats, sq_error *err);
+
+/* The same with the T-mesh given as chords (steps 2-4 only; the chords
+ * must cut M into rectangles whose corners are its cones and the chords'
+ * ends). */
+sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n_chords,
+                             const sq_quantize_options *opt, sq_map *igm, sq_quantize_stats *stats,
+                             sq_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,56 @@
+/* seamquad: the T-mesh layout of a split map, shared by the quantization
+ * steps (sq_quantize_layout.c, sq_quantize_embed.c). Not a public header. */
+#ifndef SQ_QUANTIZE_INTERNAL_H
+#define SQ_QUANTIZE_INTERNAL_H
+
+#include <stdint.h>
+
+#include "sq_error.h"
+#include "sq_map.h"
+#include "sq_map_split.h"
+
+/* The T-mesh read off a split map: faces are the components of the split
+ * triangles across edges off the chords (each an axis-aligned rectangle of
+ * the map), arcs the chains of chord edges between nodes (cones, vertices
+ * on three or more chord edges, face corners). */
+typedef struct sq_qlayout {
+    uint32_t np;          /* faces (patches)                                   */
+    uint32_t *tri_patch;  /* nt: the patch of each split triangle              */
+    uint8_t *tri_rot;     /* nt: X_t, the split triangle's chart (its mesh     */
+    double *tri_shift;    /* 2 nt: face's) to the patch's local frame:        */
+                          /* p -> R^rot p + shift, the patch [0,W] x [0,H]     */
+                          /* with its bottom along +u from (0, 0)              */
+    double *W, *H;        /* np                                               */
+    uint32_t *corner_he;  /* 4 np: the first boundary halfedge of each side    */
+                          /* (side 0 starts at the lower-left corner)          */
+    uint8_t *v_node;      /* nv (split): 1 at nodes                            */
+    uint32_t na;          /* arcs                                              */
+    uint32_t *he_arc;     /* nh (split): the arc of a chord halfedge, or       */
+                          /* UINT32_MAX                                        */
+    uint8_t *he_fwd;      /* nh: 1 where the halfedge runs along its arc       */
+    uint32_t *he_pos;     /* nh: index of the halfedge's origin along its arc  */
+                          /* (0 at the arc's first node), forward direction    */
+    uint32_t *arc_nv;     /* na: vertices along the arc including both nodes   */
+    double *arc_len;      /* na: parametric length                             */
+    double *arc_len3d;    /* na: length on the surface                         */
+    double *arc_dist;     /* the parametric distance of each arc vertex from   */
+    uint32_t *arc_off;    /* its first node: arc_dist[arc_off[a] + i]          */
+    uint32_t *side_off;   /* 4 np + 1: side s of patch p is side_arc[...]      */
+    uint32_t *side_arc;
+    uint8_t *side_rev;    /* 1 where the side runs the arc backwards           */
+} sq_qlayout;
+
+/* The layout of S (split from M along chords). Refused (SQ_ERR_INTERNAL,
+ * naming the patch) where a component is not a rectangle with 4 convex
+ * corners, or its charts do not agree. */
+sq_status sq_qlayout_build(const sq_map *M, const sq_split *S, sq_qlayout *L, sq_error *err);
+void sq_qlayout_free(sq_qlayout *L);
+
+/* The integer-grid map: every patch re-embedded onto its integer rectangle
+ * for the arc lengths `length` (na), assembled and checked exactly
+ * (sq_map_from_soup with SQ_MAP_REQUIRE_EXACT | SQ_MAP_REQUIRE_INTEGER).
+ * *tutte receives the patches that needed Tutte's map. */
+sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout *L,
+                           const int64_t *length, sq_map *igm, uint32_t *tutte, sq_error *err);
+
+#endif
