@@ -197,7 +197,7 @@ static sq_status edge_crossings(ctx *C, sq_error *err)
             }
         }
         if (st) break;
-        qsort(cross.p, cross.n, sizeof(ecross), cmp_cross);
+        if (cross.n > 1) qsort(cross.p, cross.n, sizeof(ecross), cmp_cross);
         for (size_t i = 0; i < cross.n; i++) {
             ecross *x = (ecross *)cross.p + i;
             if (i && cmp_cross(x - 1, x) == 0) { /* the same point */

@@ -126,7 +126,8 @@ done:
  * thin for them the uniform weight; any positive weights give a bijection
  * onto a convex boundary. mean_value = 0: uniform weights throughout (a
  * symmetric system: CHOLMOD), else UMFPACK. */
-static sq_status tutte_solve(const sq_patch *P, double *out_uv, int mean_value, sq_error *err)
+static sq_status tutte_solve(const sq_patch *P, double *out_uv, int mean_value, const double *pos,
+                             sq_error *err)
 {
     uint32_t *id = malloc(((size_t)P->nv + 1) * sizeof *id), nfree = 0;
     size_t cap = 12 * (size_t)P->nt + 1, nnz = 0;
@@ -154,18 +155,22 @@ static sq_status tutte_solve(const sq_patch *P, double *out_uv, int mean_value, 
             if (id[i] == UINT32_MAX) continue;
             uint32_t nb[2] = {P->tri[3 * (size_t)t + (k + 1) % 3], P->tri[3 * (size_t)t + (k + 2) % 3]};
             double half_tan = 0;
+            double pi[3], pa[3], pb[3];
             if (mean_value) {
-                double pi[3] = {P->uv[2 * (size_t)i], P->uv[2 * (size_t)i + 1], 0};
-                double pa[3] = {P->uv[2 * (size_t)nb[0]], P->uv[2 * (size_t)nb[0] + 1], 0};
-                double pb[3] = {P->uv[2 * (size_t)nb[1]], P->uv[2 * (size_t)nb[1] + 1], 0};
+                for (int c = 0; c < 3; c++) {
+                    pi[c] = pos ? pos[3 * (size_t)i + c] : c < 2 ? P->uv[2 * (size_t)i + c] : 0;
+                    pa[c] = pos ? pos[3 * (size_t)nb[0] + c] : c < 2 ? P->uv[2 * (size_t)nb[0] + c] : 0;
+                    pb[c] = pos ? pos[3 * (size_t)nb[1] + c] : c < 2 ? P->uv[2 * (size_t)nb[1] + c] : 0;
+                }
                 half_tan = sq_half_tan(pi, pa, pb);
             }
             for (int e = 0; e < 2; e++) {
                 uint32_t j = nb[e];
                 double w = 1.0;
                 if (mean_value) {
-                    double d = hypot(P->uv[2 * (size_t)j] - P->uv[2 * (size_t)i],
-                                     P->uv[2 * (size_t)j + 1] - P->uv[2 * (size_t)i + 1]);
+                    const double *q = e ? pb : pa;
+                    double d = sqrt((q[0] - pi[0]) * (q[0] - pi[0]) + (q[1] - pi[1]) * (q[1] - pi[1]) +
+                                    (q[2] - pi[2]) * (q[2] - pi[2]));
                     w = half_tan / d;
                     if (!(w > 0) || !isfinite(w)) w = 1.0;
                 }
@@ -199,7 +204,7 @@ done:
 
 sq_status sq_patch_embed_tutte(const sq_patch *P, double *out_uv, sq_error *err)
 {
-    return tutte_solve(P, out_uv, 1, err);
+    return tutte_solve(P, out_uv, 1, NULL, err);
 }
 
 sq_status sq_patch_embed(const sq_patch *P, double *out_uv, int *method, sq_error *err)
@@ -207,17 +212,26 @@ sq_status sq_patch_embed(const sq_patch *P, double *out_uv, int *method, sq_erro
     if (!P || !out_uv || !P->uv || !P->tri || !P->fixed || !(P->W > 0) || !(P->H > 0) ||
         P->a < 1 || P->b < 1)
         return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_patch_embed: bad patch");
-    sq_status st = sweep(P, out_uv, err);
-    if (st) return st;
-    uint32_t bad = count_flips(P, out_uv);
+    sq_status st;
+    uint32_t bad = 0;
+    if (P->pos) { /* the surface's own shape: mean-value weights in 3D */
+        if ((st = tutte_solve(P, out_uv, 1, P->pos, err))) return st;
+        bad = count_flips(P, out_uv);
+        if (!bad) {
+            if (method) *method = SQ_PATCH_SURFACE;
+            return SQ_OK;
+        }
+    }
+    if ((st = sweep(P, out_uv, err))) return st;
+    bad = count_flips(P, out_uv);
     if (!bad) {
         if (method) *method = SQ_PATCH_SWEEP;
         return SQ_OK;
     }
-    if ((st = tutte_solve(P, out_uv, 1, err))) return st;
+    if ((st = tutte_solve(P, out_uv, 1, NULL, err))) return st;
     uint32_t bad2 = count_flips(P, out_uv);
     if (bad2) { /* rounding in a badly conditioned mean-value system */
-        if ((st = tutte_solve(P, out_uv, 0, err))) return st;
+        if ((st = tutte_solve(P, out_uv, 0, NULL, err))) return st;
         bad2 = count_flips(P, out_uv);
     }
     if (bad2)

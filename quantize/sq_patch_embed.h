@@ -8,25 +8,28 @@
  * have prescribed new coordinates, the same for both faces of an arc) and
  * no triangle flips:
  *
- *  1. The sweep: two monotone maps, one per axis. The bottom and top sides'
- *     boundary vertices define piecewise linear maps F_b, F_t of u onto
- *     [0, a]; the left and right sides', G_l, G_r of v onto [0, b]. A point
- *     (u, v) goes first to s = (1 - v/H) F_b(u) + (v/H) F_t(u) (for each v
- *     an increasing function of u), then to t = (1 - s/a) G_l(v) + (s/a)
- *     G_r(v) (for each s an increasing function of v). Each step is a
- *     bijection of the rectangle, so their composition is one, and it
- *     agrees with the prescribed boundary. It keeps the map's shape where
- *     the integer lengths are close to the real ones (a uniform scaling
- *     when every side is scaled alike). Triangles are mapped by their
- *     vertices, so a triangle much larger than the map's variation can
- *     still flip: every triangle is checked with the exact predicate.
- *  2. Where one flips: Tutte's map (every free vertex a positive
- *     combination of its neighbours, boundary fixed on the convex
- *     rectangle), bijective for a triangulated disk whose boundary is
- *     mapped onto a convex polygon in order (Tutte 1963, Floater 2003).
- *     Mean-value weights from the map's own shape (UMFPACK), which keep it
- *     where the boundary moves affinely; uniform weights (CHOLMOD) if
- *     rounding still flips a triangle. Checked exactly again.
+ *  1. The surface's own shape, where the vertices' 3D positions are given:
+ *     Tutte's map with mean-value weights from the 3D triangles (Floater
+ *     2003): every free vertex a positive combination of its neighbours,
+ *     boundary fixed on the convex rectangle, so a bijection for a
+ *     triangulated disk whose boundary goes onto a convex polygon in order
+ *     (Tutte 1963, Floater 2003), and close to conformal on the surface
+ *     inside the face whatever the input map's distortion (UMFPACK).
+ *  2. Else, or where rounding flips a triangle: the sweep, two monotone
+ *     maps, one per axis. The bottom and top sides' boundary vertices
+ *     define piecewise linear maps F_b, F_t of u onto [0, a]; the left and
+ *     right sides', G_l, G_r of v onto [0, b]. A point (u, v) goes first to
+ *     s = (1 - v/H) F_b(u) + (v/H) F_t(u) (for each v an increasing
+ *     function of u), then to t = (1 - s/a) G_l(v) + (s/a) G_r(v) (for
+ *     each s an increasing function of v). Each step is a bijection of the
+ *     rectangle, so their composition is one, and it agrees with the
+ *     prescribed boundary; it keeps the input map's shape. Triangles are
+ *     mapped by their vertices, so a triangle much larger than the map's
+ *     variation can still flip.
+ *  3. Where that flips too: Tutte's map with mean-value weights from the
+ *     map's own shape (which reproduce an affine change exactly), then
+ *     with uniform weights (CHOLMOD) if rounding still flips a triangle.
+ * Every result is checked with the exact predicate.
  *
  * Cost: O(nv log nv) for the sweep; one sparse Cholesky of the free
  * vertices for Tutte. A patch that neither gives positive triangles is
@@ -53,15 +56,18 @@ typedef struct sq_patch {
     const uint8_t *fixed; /* nv: 0 inside; on the boundary (new UV given) the */
                           /* sides the vertex lies on, SQ_PATCH_BOTTOM | ...   */
                           /* (a corner has two)                               */
+    const double *pos;    /* 3 nv or NULL: the vertices on the surface (see   */
+                          /* sq_patch_embed)                                  */
 } sq_patch;
 
 enum { SQ_PATCH_BOTTOM = 1, SQ_PATCH_RIGHT = 2, SQ_PATCH_TOP = 4, SQ_PATCH_LEFT = 8 };
 
-enum { SQ_PATCH_SWEEP = 1, SQ_PATCH_TUTTE = 2 };
+enum { SQ_PATCH_SURFACE = 3, SQ_PATCH_SWEEP = 1, SQ_PATCH_TUTTE = 2 };
 
 /* out_uv (2 nv): on entry the new coordinates of the fixed vertices (the
  * four corners at (0,0), (a,0), (a,b), (0,b)); on return every vertex's.
- * *method receives SQ_PATCH_SWEEP or SQ_PATCH_TUTTE. */
+ * *method receives the step that gave it: SQ_PATCH_SURFACE, SQ_PATCH_SWEEP
+ * or SQ_PATCH_TUTTE. */
 sq_status sq_patch_embed(const sq_patch *P, double *out_uv, int *method, sq_error *err);
 
 /* Step 2 alone (the fallback, mean-value weights): Tutte's map with the

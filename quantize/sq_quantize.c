@@ -25,6 +25,33 @@ static sq_status check_options(const sq_quantize_options *opt, sq_error *err)
     return SQ_OK;
 }
 
+/* Per-arc minimum lengths (see the caller). Arcs are sorted by their end
+ * pair to find parallel ones. */
+static int cmp_pair64(const void *a, const void *b)
+{
+    const uint64_t *p = a, *q = b;
+    return (p[0] > q[0]) - (p[0] < q[0]);
+}
+
+static void arcs_minimum(const sq_qlayout *L, int64_t *min_arc)
+{
+    uint64_t *key = malloc(((size_t)L->na + 1) * 2 * sizeof *key);
+    for (uint32_t a = 0; a < L->na; a++) {
+        uint32_t u = L->arc_end[2 * (size_t)a], v = L->arc_end[2 * (size_t)a + 1];
+        min_arc[a] = u == v ? 3 : 1;
+        if (key) key[2 * (size_t)a] = u < v ? ((uint64_t)u << 32 | v) : ((uint64_t)v << 32 | u), key[2 * (size_t)a + 1] = a;
+    }
+    if (!key) return; /* without the table: no extra minimum (a double edge is then refused later) */
+    qsort(key, L->na, 2 * sizeof *key, cmp_pair64);
+    for (uint32_t i = 0; i + 1 < L->na; i++)
+        if (key[2 * (size_t)i] == key[2 * (size_t)i + 2]) {
+            uint32_t a = (uint32_t)key[2 * (size_t)i + 1], b = (uint32_t)key[2 * (size_t)i + 3];
+            if (min_arc[a] < 2) min_arc[a] = 2;
+            if (min_arc[b] < 2) min_arc[b] = 2;
+        }
+    free(key);
+}
+
 sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n_chords,
                              const sq_quantize_options *opt, sq_map *igm, sq_quantize_stats *stats,
                              sq_error *err)
@@ -39,7 +66,7 @@ sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n
     sq_split S;
     sq_qlayout L;
     memset(&L, 0, sizeof L);
-    int64_t *length = NULL;
+    int64_t *length = NULL, *min_arc = NULL;
     double *target = NULL;
     if ((st = sq_map_split(M, chords, n_chords, &S, err))) return st;
     double t1 = sq_now();
@@ -76,7 +103,17 @@ sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n
         scale = area > 0 ? sqrt(opt->quads / area) : 1.0;
     }
     for (uint32_t a = 0; a < L.na; a++) target[a] = fmax(len[a] * scale, 1e-6);
-    sq_tmesh_sides T = {L.np, L.na, L.side_off, L.side_arc, target, NULL, 1};
+    /* a simple quad mesh: an arc that closes on its node needs 3 (1 would
+     * join a vertex to itself, 2 give two edges between two vertices), two
+     * arcs between the same two nodes need 2 each (two length-1 arcs would
+     * be one edge twice) */
+    min_arc = malloc(((size_t)L.na + 1) * sizeof *min_arc);
+    if (!min_arc) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quantization)");
+        goto done;
+    }
+    arcs_minimum(&L, min_arc);
+    sq_tmesh_sides T = {L.np, L.na, L.side_off, L.side_arc, target, NULL, 1, min_arc};
     sq_tmesh_lengths_stats ls;
     memset(&ls, 0, sizeof ls);
     if (opt->quads > 0)
@@ -87,7 +124,7 @@ sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n
     double t3 = sq_now();
     stats->seconds_lengths = t3 - t2;
     stats->min_quads = ls.min_quads;
-    if ((st = sq_qlayout_embed(M, &S, &L, length, igm, &stats->tutte_faces, err))) goto done;
+    if ((st = sq_qlayout_embed(M, &S, &L, length, igm, &stats->fallback_faces, err))) goto done;
     stats->seconds_embed = sq_now() - t3;
     stats->quads = 0;
     for (uint32_t p = 0; p < L.np; p++) {
@@ -99,7 +136,7 @@ sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n
     stats->cones = 0;
     for (uint32_t v = 0; v < M->mesh.nv; v++) stats->cones += M->valence[v] != 4;
 done:
-    free(length), free(target);
+    free(length), free(target), free(min_arc);
     sq_qlayout_free(&L);
     sq_split_free(&S);
     stats->seconds = sq_now() - t0;

@@ -45,7 +45,7 @@ typedef struct sq_quantize_stats {
     uint32_t cones;
     uint32_t nodes, arcs, faces;      /* the T-mesh read off the split       */
     uint32_t split_vertices, split_triangles;
-    uint32_t tutte_faces;             /* faces placed by Tutte's map         */
+    uint32_t fallback_faces;          /* faces not placed by the surface map */
     double quads;                     /* quads of the integer-grid map       */
     double min_quads;                 /* the fewest the T-mesh allows (for a */
                                       /* quad target; 0 otherwise)          */

@@ -29,7 +29,7 @@
 #define ALPHA_GRID 16777216.0
 
 sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout *L,
-                           const int64_t *length, sq_map *igm, uint32_t *tutte, sq_error *err)
+                           const int64_t *length, sq_map *igm, uint32_t *fallback, sq_error *err)
 {
     const sq_mesh *m = &S->mesh;
     sq_status st = SQ_OK;
@@ -43,6 +43,7 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
     uint32_t *loc = malloc(((size_t)m->nh + 1) * sizeof *loc), *stamp = malloc(((size_t)m->nh + 1) * sizeof *stamp);
     uint32_t *lv = malloc(((size_t)S->nv + 1) * sizeof *lv); /* local -> vertex */
     double *old_uv = malloc(2 * ((size_t)S->nv + 1) * sizeof *old_uv);
+    double *lpos = malloc(3 * ((size_t)S->nv + 1) * sizeof *lpos);
     double *new_uv = malloc(2 * ((size_t)S->nv + 1) * sizeof *new_uv);
     uint8_t *fixed = malloc((size_t)S->nv + 1);
     uint32_t *ltri = malloc(3 * ((size_t)S->nt + 1) * sizeof *ltri);
@@ -50,12 +51,12 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
     uint32_t *face_uv = malloc(3 * ((size_t)S->nt + 1) * sizeof *face_uv);
     size_t vt_cap = (size_t)S->nv + 16, nvt = 0;
     double *vt = malloc(2 * vt_cap * sizeof *vt);
-    if (!alpha || !wedge || !tri_off || !tri_list || !loc || !stamp || !lv || !old_uv || !new_uv || !fixed ||
+    if (!alpha || !lpos || !wedge || !tri_off || !tri_list || !loc || !stamp || !lv || !old_uv || !new_uv || !fixed ||
         !ltri || !face_uv || !vt) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quantization embedding)");
         goto done;
     }
-    if (tutte) *tutte = 0;
+    if (fallback) *fallback = 0;
     /* 1. arc positions */
     for (uint32_t a = 0; a < L->na && !st; a++) {
         uint32_t o = L->arc_off[a], n = L->arc_nv[a];
@@ -173,10 +174,11 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
             } while (h != end);
         }
         if (st) break;
-        sq_patch P = {nl, tri_off[p + 1] - tri_off[p], old_uv, ltri, W, H, A, B, fixed};
+        for (uint32_t l = 0; l < nl; l++) memcpy(lpos + 3 * (size_t)l, S->pos + 3 * (size_t)lv[l], 3 * sizeof *lpos);
+        sq_patch P = {nl, tri_off[p + 1] - tri_off[p], old_uv, ltri, W, H, A, B, fixed, lpos};
         int method = 0;
         if ((st = sq_patch_embed(&P, new_uv, &method, err))) break;
-        if (method == SQ_PATCH_TUTTE && tutte) (*tutte)++;
+        if (method != SQ_PATCH_SURFACE && fallback) (*fallback)++;
         /* vt of this patch */
         if (nvt + nl > vt_cap) {
             vt_cap = 2 * (nvt + nl);
@@ -214,7 +216,7 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
         if (st) st = sq_error_set(err, SQ_ERR_INTERNAL, "quantization: the integer-grid map fails its check: %s", e2.msg);
     }
 done:
-    free(alpha), free(wedge), free(tri_off), free(tri_list), free(loc), free(stamp), free(lv), free(old_uv);
+    free(alpha), free(wedge), free(tri_off), free(tri_list), free(loc), free(stamp), free(lv), free(old_uv), free(lpos);
     free(new_uv), free(fixed), free(ltri), free(face_uv), free(vt);
     return st;
 }

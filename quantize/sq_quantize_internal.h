@@ -31,6 +31,7 @@ typedef struct sq_qlayout {
     uint32_t *he_pos;     /* nh: index of the halfedge's origin along its arc  */
                           /* (0 at the arc's first node), forward direction    */
     uint32_t *arc_nv;     /* na: vertices along the arc including both nodes   */
+    uint32_t *arc_end;    /* 2 na: its first and last node (split vertices)    */
     double *arc_len;      /* na: parametric length                             */
     double *arc_len3d;    /* na: length on the surface                         */
     double *arc_dist;     /* the parametric distance of each arc vertex from   */
@@ -49,8 +50,9 @@ void sq_qlayout_free(sq_qlayout *L);
 /* The integer-grid map: every patch re-embedded onto its integer rectangle
  * for the arc lengths `length` (na), assembled and checked exactly
  * (sq_map_from_soup with SQ_MAP_REQUIRE_EXACT | SQ_MAP_REQUIRE_INTEGER).
- * *tutte receives the patches that needed Tutte's map. */
+ * *fallback receives the patches that needed a fallback (sq_patch_embed:
+ * not the surface's mean-value map). */
 sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout *L,
-                           const int64_t *length, sq_map *igm, uint32_t *tutte, sq_error *err);
+                           const int64_t *length, sq_map *igm, uint32_t *fallback, sq_error *err);
 
 #endif

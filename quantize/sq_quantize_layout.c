@@ -51,7 +51,7 @@ void sq_qlayout_free(sq_qlayout *L)
     if (!L) return;
     free(L->tri_patch), free(L->tri_rot), free(L->tri_shift), free(L->W), free(L->H);
     free(L->corner_he), free(L->v_node), free(L->he_arc), free(L->he_fwd), free(L->he_pos);
-    free(L->arc_nv), free(L->arc_len), free(L->arc_len3d), free(L->arc_dist), free(L->arc_off);
+    free(L->arc_nv), free(L->arc_end), free(L->arc_len), free(L->arc_len3d), free(L->arc_dist), free(L->arc_off);
     free(L->side_off), free(L->side_arc), free(L->side_rev);
     memset(L, 0, sizeof *L);
 }
@@ -351,11 +351,12 @@ sq_status sq_qlayout_build(const sq_map *M, const sq_split *S, sq_qlayout *L, sq
     for (uint32_t h = 0; h < m->nh; h++) L->he_arc[h] = UINT32_MAX;
     uint32_t cap = 64, dist_cap = 256, dist_n = 0;
     L->arc_nv = malloc(cap * sizeof *L->arc_nv);
+    L->arc_end = malloc(2 * cap * sizeof *L->arc_end);
     L->arc_len = malloc(cap * sizeof *L->arc_len);
     L->arc_len3d = malloc(cap * sizeof *L->arc_len3d);
     L->arc_off = malloc((cap + 1) * sizeof *L->arc_off);
     L->arc_dist = malloc(dist_cap * sizeof *L->arc_dist);
-    if (!L->arc_nv || !L->arc_len || !L->arc_len3d || !L->arc_off || !L->arc_dist) {
+    if (!L->arc_nv || !L->arc_end || !L->arc_len || !L->arc_len3d || !L->arc_off || !L->arc_dist) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quantization layout)");
         goto done;
     }
@@ -367,7 +368,9 @@ sq_status sq_qlayout_build(const sq_map *M, const sq_split *S, sq_qlayout *L, sq
             if (L->na + 1 >= cap) {
                 cap *= 2;
                 void *a = realloc(L->arc_nv, cap * sizeof *L->arc_nv), *b = NULL, *c = NULL, *d = NULL;
-                if (a) L->arc_nv = a, b = realloc(L->arc_len, cap * sizeof *L->arc_len);
+                void *e = realloc(L->arc_end, 2 * cap * sizeof *L->arc_end);
+                if (e) L->arc_end = e;
+                if (a && e) L->arc_nv = a, b = realloc(L->arc_len, cap * sizeof *L->arc_len);
                 if (b) L->arc_len = b, c = realloc(L->arc_len3d, cap * sizeof *L->arc_len3d);
                 if (c) L->arc_len3d = c, d = realloc(L->arc_off, (cap + 1) * sizeof *L->arc_off);
                 if (!d) {
@@ -377,6 +380,7 @@ sq_status sq_qlayout_build(const sq_map *M, const sq_split *S, sq_qlayout *L, sq
                 L->arc_off = d;
             }
             uint32_t a = L->na++, h = h0, pos = 0;
+            L->arc_end[2 * (size_t)a] = m->he_vert[h0];
             double len = 0, len3 = 0;
             L->arc_off[a] = dist_n;
             for (;;) {
@@ -416,6 +420,7 @@ sq_status sq_qlayout_build(const sq_map *M, const sq_split *S, sq_qlayout *L, sq
             }
             if (st) break;
             L->arc_dist[dist_n++] = len; /* the last node */
+            L->arc_end[2 * (size_t)a + 1] = m->he_vert[m->he_next[h]];
             L->arc_nv[a] = pos + 1;
             L->arc_len[a] = len;
             L->arc_len3d[a] = len3;

@@ -109,6 +109,10 @@ static sq_status model_init(model *M, const sq_tmesh_sides *T, sq_error *err)
         return sq_error_set(err, SQ_ERR_ARGUMENT, "T-mesh lengths: min_length %lld is not in 1 .. %.0f",
                             (long long)T->min_length, SQ_TMESH_MAX_LENGTH);
     uint32_t nf = T->n_faces, na = T->n_arcs;
+    for (uint32_t a = 0; T->min_arc && a < na; a++)
+        if ((double)T->min_arc[a] > SQ_TMESH_MAX_LENGTH)
+            return sq_error_set(err, SQ_ERR_ARGUMENT, "T-mesh lengths: arc %u's minimum %lld is above %.0f", a,
+                                (long long)T->min_arc[a], SQ_TMESH_MAX_LENGTH);
     if (T->side_off[0] != 0)
         return sq_error_set(err, SQ_ERR_ARGUMENT, "T-mesh lengths: side_off[0] is %u, not 0", T->side_off[0]);
     for (uint32_t fs = 0; fs < 4 * nf; fs++) {
@@ -325,15 +329,23 @@ static piecewise relaxed_cost(int64_t W, double t, int64_t lo)
     return h;
 }
 
+/* The smallest length allowed on arc a. */
+static int64_t arc_min(const sq_tmesh_sides *T, uint32_t a)
+{
+    int64_t m = T->min_length;
+    if (T->min_arc && T->min_arc[a] > m) m = T->min_arc[a];
+    return m;
+}
+
 /* Builds the cover network for targets t with the current orientation and
  * solves it. Split costs of the integer problem: L[a] = f(e1) + f(e2).
  * relaxed: the relaxation's costs, and Lr[a] = (f(e1) + f(e2)) / 2. */
 static sq_status solve_cover(model *M, const double *t, int relaxed, int64_t *L, double *Lr, sq_error *err)
 {
     const sq_tmesh_sides *T = M->T;
-    int64_t m = T->min_length;
     M->net_arcs = 0;
     for (uint32_t a = 0; a < T->n_arcs; a++) {
+        int64_t m = arc_min(T, a);
         uint32_t i = M->first[a], j = i ^ 1;
         uint32_t u = M->end_node[2 * a + i], v = M->end_node[2 * a + j];
         int su = M->end_sign[2 * a + i], sv = M->end_sign[2 * a + j];
@@ -363,7 +375,7 @@ static sq_status solve_cover(model *M, const double *t, int relaxed, int64_t *L,
     if (st == SQ_MCF_INFEASIBLE)
         return sq_error_set(err, SQ_ERR_UNREALIZABLE,
                             "T-mesh lengths: no lengths >= %lld satisfy the T-mesh's %u faces' constraints",
-                            (long long)m, T->n_faces);
+                            (long long)T->min_length, T->n_faces);
     if (st == SQ_MCF_NOMEM)
         return sq_error_set(err, SQ_ERR_NOMEM, "T-mesh lengths: out of memory in the min-cost flow (%u arcs)",
                             M->net_arcs);
@@ -399,7 +411,7 @@ static double model_cost(int64_t W, double t, int64_t m, int64_t L)
 static double total_model_cost(const model *M, const double *t, const int64_t *L)
 {
     double c = 0.0;
-    for (uint32_t a = 0; a < M->T->n_arcs; a++) c += model_cost(M->W[a], t[a], M->T->min_length, L[a]);
+    for (uint32_t a = 0; a < M->T->n_arcs; a++) c += model_cost(M->W[a], t[a], arc_min(M->T, a), L[a]);
     return c;
 }
 
@@ -425,7 +437,7 @@ static int64_t side_sum(const sq_tmesh_sides *T, uint32_t f, uint32_t s, const i
 static int violates(const sq_tmesh_sides *T, const int64_t *L, uint32_t *bad_face, uint32_t *bad_arc)
 {
     for (uint32_t a = 0; a < T->n_arcs; a++)
-        if (L[a] < T->min_length) {
+        if (L[a] < arc_min(T, a)) {
             *bad_face = UINT32_MAX;
             *bad_arc = a;
             return 1;
@@ -529,7 +541,7 @@ static sq_status solve_lengths(model *M, const double *t, int64_t *length, sq_tm
     uint32_t bad_face = 0, bad_arc = 0;
     for (uint32_t a = 0; a < na; a++) {
         int64_t v = (int64_t)llround(t[a]);
-        next[a] = v < T->min_length ? T->min_length : v;
+        next[a] = v < arc_min(T, a) ? arc_min(T, a) : v;
     }
     int rounding_feasible = !violates(T, next, &bad_face, &bad_arc);
     double rounding_cost = real_cost(T, t, next, NULL);
@@ -543,8 +555,8 @@ static sq_status solve_lengths(model *M, const double *t, int64_t *length, sq_tm
 
     if (violates(T, length, &bad_face, &bad_arc)) {
         if (bad_face == UINT32_MAX)
-            return sq_error_set(err, SQ_ERR_INTERNAL, "T-mesh lengths: arc %u got length %lld < min_length %lld",
-                                bad_arc, (long long)length[bad_arc], (long long)T->min_length);
+            return sq_error_set(err, SQ_ERR_INTERNAL, "T-mesh lengths: arc %u got length %lld < its minimum %lld",
+                                bad_arc, (long long)length[bad_arc], (long long)arc_min(T, bad_arc));
         return sq_error_set(err, SQ_ERR_INTERNAL,
                             "T-mesh lengths: face %u's opposite sides differ (%lld/%lld, %lld/%lld)", bad_face,
                             (long long)side_sum(T, bad_face, 0, length), (long long)side_sum(T, bad_face, 2, length),

@@ -52,6 +52,8 @@ typedef struct sq_tmesh_sides {
     const double *target;      /* n_arcs: desired length (> 0, finite) */
     const double *weight;      /* n_arcs, or NULL for all 1 (each >= 0, finite) */
     int64_t min_length;        /* smallest allowed length (>= 1) */
+    const int64_t *min_arc;    /* n_arcs or NULL: a larger smallest length for
+                                  some arcs (the larger of the two counts) */
 } sq_tmesh_sides;
 
 typedef struct sq_tmesh_lengths_stats {

@@ -96,7 +96,7 @@ static void make(gen *G, uint32_t nx, uint32_t ny, double W, double H, int64_t a
         const uint32_t *c = G->tri + 3 * k;
         assert_true(sq_orient2d(G->uv + 2 * c[0], G->uv + 2 * c[1], G->uv + 2 * c[2]) > 0);
     }
-    G->P = (sq_patch){G->nv, G->nt, G->uv, G->tri, W, H, a, b, G->fixed};
+    G->P = (sq_patch){G->nv, G->nt, G->uv, G->tri, W, H, a, b, G->fixed, NULL};
 }
 
 static void release(gen *G)

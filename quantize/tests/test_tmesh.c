@@ -415,7 +415,7 @@ static void lengths_case(const sq_map *M, double scale, int exact)
     for (uint32_t a = 0; a < T.n_arcs; a++) mean += T.arcs[a].length / T.n_arcs;
     if (!exact) scale /= mean; /* a mean target of `scale` units */
     for (uint32_t a = 0; a < T.n_arcs; a++) target[a] = T.arcs[a].length * scale;
-    sq_tmesh_sides S = {T.n_faces, T.n_arcs, T.side_off, T.side_arc, target, NULL, 1};
+    sq_tmesh_sides S = {T.n_faces, T.n_arcs, T.side_off, T.side_arc, target, NULL, 1, NULL};
     sq_tmesh_lengths_stats ls;
     if (sq_tmesh_lengths(&S, L, &ls, &err)) fail_msg("lengths: %s", err.msg);
     if (exact)

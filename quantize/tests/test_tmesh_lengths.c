@@ -72,7 +72,7 @@ static void tm_free(tmesh *t)
 
 static sq_tmesh_sides sides_of(const tmesh *t, int64_t min_length)
 {
-    sq_tmesh_sides T = {t->n_faces, t->n_arcs, t->side_off, t->side_arc, t->target, t->weight, min_length};
+    sq_tmesh_sides T = {t->n_faces, t->n_arcs, t->side_off, t->side_arc, t->target, t->weight, min_length, NULL};
     return T;
 }
 
@@ -476,7 +476,7 @@ static void test_bad_input(void **state)
     {
         uint32_t off[5] = {0, 2, 3, 4, 6}, arc[6] = {0, 0, 1, 1, 2, 2};
         double tg[3] = {1, 1, 1};
-        sq_tmesh_sides T = {1, 3, off, arc, tg, NULL, 1};
+        sq_tmesh_sides T = {1, 3, off, arc, tg, NULL, 1, NULL};
         int64_t L3[3];
         assert_int_equal(sq_tmesh_lengths(&T, L3, NULL, &err), SQ_ERR_ARGUMENT);
         assert_non_null(strstr(err.msg, "arc 0 lies twice on side 0 of face 0"));
@@ -485,7 +485,7 @@ static void test_bad_input(void **state)
     {
         uint32_t off[5] = {0, 1, 2, 3, 4}, arc[4] = {0, 1, 0, 1};
         double tg[3] = {1, 1, 1};
-        sq_tmesh_sides T = {1, 3, off, arc, tg, NULL, 1};
+        sq_tmesh_sides T = {1, 3, off, arc, tg, NULL, 1, NULL};
         int64_t L3[3];
         assert_int_equal(sq_tmesh_lengths(&T, L3, NULL, &err), SQ_ERR_ARGUMENT);
         assert_non_null(strstr(err.msg, "not 2 n_arcs = 6"));
@@ -495,7 +495,7 @@ static void test_bad_input(void **state)
     {
         uint32_t off[5] = {0, 2, 4, 5, 6}, arc[6] = {0, 1, 2, 1, 0, 2};
         double tg[3] = {1, 1, 1};
-        sq_tmesh_sides T = {1, 3, off, arc, tg, NULL, 1};
+        sq_tmesh_sides T = {1, 3, off, arc, tg, NULL, 1, NULL};
         int64_t L3[3];
         assert_int_equal(sq_tmesh_lengths(&T, L3, NULL, &err), SQ_ERR_UNREALIZABLE);
         assert_non_null(strstr(err.msg, "no lengths >= 1"));

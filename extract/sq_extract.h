@@ -1,0 +1,107 @@
+/* seamquad: the quad mesh of an integer-grid map (extract stage).
+ *
+ * Input: an integer-grid map M (sq_map.h, valid for sq_map_check with
+ * SQ_MAP_REQUIRE_INTEGER): every UV triangle strictly positive, every
+ * transition a rotation by a multiple of 90 degrees plus an integer
+ * translation, exactly, and every cone on an integer point.
+ *
+ * Output: the closed, pure-quad mesh whose vertices are the integer points
+ * of the map and whose edges are the unit segments of the integer grid
+ * traced on the surface. Its irregular vertices are exactly the cones (a
+ * cone of valence k is a quad vertex of valence k), and every vertex lies
+ * on the triangle mesh of M (a point of one of its triangles).
+ *
+ * Steps (one file each; docs/extract.md):
+ *  1. grid points (sq_extract_points.c): the integer points of the map, each
+ *     once: at mesh vertices, strictly inside edges, strictly inside faces,
+ *     with their outgoing grid directions (4, or k at a cone of valence k);
+ *  2. tracing (sq_extract_trace.c): every outgoing direction is followed as
+ *     the unit segment P -> P + d across triangles and charts to the grid
+ *     point at its end, and the direction it arrives from;
+ *  3. quads (sq_extract_quads.c): each directed grid edge has one quad on
+ *     its left, found by turning left at each end; every (point, direction)
+ *     must belong to exactly one quad and the two traces of an edge must
+ *     agree;
+ *  4. positions (sq_extract_positions.c): 3D positions by barycentric
+ *     interpolation in the triangle, edge or vertex holding each point.
+ *
+ * Every decision is an exact orientation test (sq_orient2d) or a comparison
+ * of doubles that are integers or UV corners: no tolerance anywhere. A map
+ * too coarse for a quad mesh (a grid edge from a point back to itself, two
+ * grid edges between the same points, a quad through one point twice) is
+ * refused with SQ_ERR_DEGENERATE naming the grid point; an inconsistency
+ * (a bug) is SQ_ERR_INTERNAL naming the grid point, its direction and the
+ * face. No partial mesh is ever returned.
+ *
+ * The library never prints or exits. */
+#ifndef SQ_EXTRACT_H
+#define SQ_EXTRACT_H
+
+#include <stdint.h>
+
+#include "sq_error.h"
+#include "sq_map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Where a grid point lies on the map's triangle mesh. */
+typedef enum sq_grid_kind {
+    SQ_GRID_VERTEX = 0, /* at a mesh vertex (element: the vertex)                  */
+    SQ_GRID_EDGE = 1,   /* strictly inside an edge (element: the edge's halfedge   */
+                        /* h < twin(h), whose face's chart gives the UV)           */
+    SQ_GRID_FACE = 2    /* strictly inside a face (element: the face)              */
+} sq_grid_kind;
+
+typedef struct sq_extract_stats {
+    uint32_t vertex_points;  /* grid points at mesh vertices                       */
+    uint32_t edge_points;    /* grid points strictly inside mesh edges             */
+    uint32_t face_points;    /* grid points strictly inside mesh faces             */
+    uint32_t quads;
+    uint32_t edges;          /* quad mesh edges (= 2 quads)                        */
+    uint32_t irregular;      /* quad vertices of valence != 4 (= the cones)        */
+    uint64_t trace_steps;    /* faces, edges and vertices crossed by all traces    */
+    uint32_t max_trace_steps;/* the longest trace of one unit segment              */
+    double t_check;          /* seconds: sq_map_check of the input                 */
+    double t_points, t_trace, t_quads, t_positions, t_total; /* seconds, per step  */
+} sq_extract_stats;
+
+/* The result. Arrays are owned by the struct (sq_quad_mesh_free). Vertex
+ * order: grid points at mesh vertices (by vertex), then inside edges (by
+ * halfedge), then inside faces (by face; within an edge or face in
+ * increasing coordinate order of its chart). Quads are counterclockwise
+ * (the orientation of the triangle mesh), ordered by their first vertex
+ * (each quad starts at its lowest direction slot). */
+typedef struct sq_quad_mesh {
+    uint32_t nv, nq;
+    double *pos;         /* 3 nv: position on the map's triangle mesh              */
+    uint32_t *quad;      /* 4 nq: vertex indices, counterclockwise                 */
+    int32_t *valence;    /* nv: quads around the vertex                            */
+    uint8_t *kind;       /* nv: sq_grid_kind                                       */
+    uint32_t *elem;      /* nv: the vertex, halfedge or face of that kind          */
+    double *uv;          /* 2 nv: integer UV in the chart of loc_face              */
+    uint32_t *loc_face;  /* nv: a face of the map's mesh holding the point         */
+    double *loc_bary;    /* 3 nv: barycentric coordinates in loc_face, for the     */
+                         /* corners at the origins of f_he[f], next, next-next     */
+} sq_quad_mesh;
+
+/* Builds the quad mesh of the integer-grid map M. The map is checked first
+ * (sq_map_check with SQ_MAP_REQUIRE_INTEGER: errors name its face, vertex
+ * or edge); UV coordinates must stay below 2^40 in magnitude and the grid
+ * below 2*10^8 points (SQ_ERR_ARGUMENT). On success: only quads, closed,
+ * manifold, oriented as the map, connected, the map's Euler
+ * characteristic, valence 4 except at the cones (valence[v] of the map),
+ * quad count = UV area.
+ * out is overwritten (not freed: free a previous result first); on failure
+ * it is left empty. stats may be NULL. */
+sq_status sq_extract(const sq_map *M, sq_quad_mesh *out, sq_extract_stats *stats,
+                     sq_error *err);
+
+/* Frees every array and zeroes the struct. Safe on a zeroed struct. */
+void sq_quad_mesh_free(sq_quad_mesh *q);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
