@@ -16,7 +16,8 @@
 static void help(FILE *f)
 {
     fprintf(f,
-            "usage: seamquad extract MESH IGM.obj -o QUADS.obj [--cones FILE] [--json] [--quiet]\n"
+            "usage: seamquad extract MESH IGM.obj -o QUADS.obj [--cones FILE] [--untangle on|off]\n"
+            "                        [--json] [--quiet]\n"
             "\n"
             "Extracts the quad mesh of an integer-grid map (IGM) of the closed triangle\n"
             "mesh MESH.\n"
@@ -45,7 +46,11 @@ static void help(FILE *f)
             "directed grid edge has one quad on its left, found by turning left at its\n"
             "end, four times; (4) each point's position by barycentric interpolation in\n"
             "the triangle (or edge, or vertex) holding it. Every decision is an exact\n"
-            "orientation test on the stored doubles.\n"
+            "orientation test on the stored doubles. (5) Where a quad is folded in 3D\n"
+            "(the map is distorted at the scale of one quad, as around the cones of\n"
+            "published maps), the vertices of folded quads other than cones move\n"
+            "towards their neighbours' mean, projected back onto MESH, each move kept\n"
+            "only if it unfolds; the summary counts the folds before and after.\n"
             "\n"
             "Guarantees of QUADS.obj (written only when all hold):\n"
             "  - only quads; closed, manifold, consistently oriented (as MESH), one\n"
@@ -69,6 +74,8 @@ static void help(FILE *f)
             "                its valence, so the quad mesh's irregular vertices are these\n"
             "                cones; without it, the cones are whatever the map's angle\n"
             "                sums say\n"
+            "  --untangle on|off  step 5 (default on; off: the map's own positions,\n"
+            "                for diagnosis)\n"
             "  --json        machine-readable statistics on stdout: grid points by kind,\n"
             "                quads, edges, irregular vertices, valences, time per step\n"
             "  --quiet       no summary on stdout (errors still on stderr)\n"
@@ -94,6 +101,9 @@ typedef struct report {
     int64_t genus;
     sq_map_report map;
     sq_extract_stats st;
+    sq_untangle_stats un;
+    int untangle;
+    double t_untangle;
     uint32_t hist[MAX_VALENCE_HIST]; /* quad mesh valences */
     double t_read, t_map, t_write, t_total;
     int done;
@@ -127,6 +137,9 @@ static void print_text(const report *r)
     printf(")\n");
     printf("traced        %llu faces, edges and vertices crossed (longest edge: %u)\n",
            (unsigned long long)s->trace_steps, s->max_trace_steps);
+    if (r->untangle)
+        printf("untangled     %u folded quads before, %u after (%u moves in %u rounds, %.3f s)\n",
+               r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
     printf("verified      closed, manifold, oriented, Euler characteristic of the mesh; the\n"
            "              irregular vertices are the cones; quads = UV area\n");
     printf("time          read %.3f s, map %.3f s, extract %.3f s (check %.3f, points %.3f, "
@@ -162,6 +175,10 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
         print_hist(r->hist, 1);
         printf("},\n  \"trace_steps\": %llu, \"max_trace_steps\": %u", (unsigned long long)s->trace_steps,
                s->max_trace_steps);
+        if (r->untangle)
+            printf(",\n  \"folded_before\": %u, \"folded_after\": %u, \"untangle_moves\": %u, "
+                   "\"untangle_rounds\": %u, \"untangle_s\": %.6f",
+                   r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
     }
     printf(",\n  \"time_s\": {\"read\": %.6f, \"map\": %.6f, \"check\": %.6f, \"points\": %.6f, "
            "\"trace\": %.6f, \"quads\": %.6f, \"positions\": %.6f, \"extract\": %.6f, "
@@ -179,6 +196,7 @@ int sq_cmd_extract(int argc, char **argv)
 {
     report r;
     memset(&r, 0, sizeof r);
+    r.untangle = 1;
     int json = 0, quiet = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -189,6 +207,14 @@ int sq_cmd_extract(int argc, char **argv)
             json = 1;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             quiet = 1;
+        } else if (!strcmp(a, "--untangle")) {
+            const char *v = i + 1 < argc ? argv[++i] : "";
+            if (!strcmp(v, "on")) r.untangle = 1;
+            else if (!strcmp(v, "off")) r.untangle = 0;
+            else {
+                fprintf(stderr, "seamquad extract: --untangle is on or off, not '%s'\n", v);
+                return SQ_EXIT_USAGE;
+            }
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "seamquad extract: %s needs a file\n", a);
@@ -275,6 +301,12 @@ int sq_cmd_extract(int argc, char **argv)
             snprintf(msg, sizeof msg, "%s", err.msg);
             sq_error_set(&err, st, "%s: %s", r.map_path, msg);
         }
+    }
+    if (!st && r.untangle) {
+        stage = "untangle";
+        double t1 = sq_now();
+        st = sq_extract_untangle(&M, &Q, &r.un, &err);
+        r.t_untangle = sq_now() - t1;
     }
     if (!st) {
         r.done = 1;

@@ -101,6 +101,21 @@ sq_status sq_extract(const sq_map *M, sq_quad_mesh *out, sq_extract_stats *stats
 /* Frees every array and zeroes the struct. Safe on a zeroed struct. */
 void sq_quad_mesh_free(sq_quad_mesh *q);
 
+typedef struct sq_untangle_stats {
+    uint32_t folded_before, folded_after; /* quads folded in 3D (the referee's */
+                                          /* test: both triangulations)       */
+    uint32_t rounds, moves;
+} sq_untangle_stats;
+
+/* Step 5 (sq_extract_untangle.c): the vertices of folded quads, cones
+ * excepted, relaxed towards their neighbours' mean and projected back onto
+ * the map's mesh, each move kept only where it raises the worst fold
+ * margin around the vertex. Connectivity unchanged; moved vertices keep
+ * lying on the surface (loc_face, loc_bary and uv updated: uv is then the
+ * map's value there, no longer integer). Folds may remain (stats say how
+ * many); the call fails only for lack of memory. */
+sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stats *stats, sq_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -639,7 +639,10 @@ sq_status sq_tmesh_lengths_for_quads(const sq_tmesh_sides *T, double n_quads, in
         double scale = sqrt(n_quads / area), best_err = fabs(stats->quads - n_quads);
         double tmax = 0.0;
         for (uint32_t a = 0; a < na; a++) tmax = fmax(tmax, T->target[a]);
-        for (int iter = 0; iter < 8; iter++) {
+        /* the count jumps with the rounding: once a scale below and one
+         * above the request are known, bisect between them */
+        double below = 0.0, above = 0.0;
+        for (int iter = 0; iter < 16; iter++) {
             if (scale * tmax > SQ_TMESH_MAX_LENGTH) scale = SQ_TMESH_MAX_LENGTH / tmax;
             for (uint32_t a = 0; a < na; a++) t[a] = T->target[a] * scale;
             memset(&sub, 0, sizeof sub);
@@ -658,7 +661,10 @@ sq_status sq_tmesh_lengths_for_quads(const sq_tmesh_sides *T, double n_quads, in
                 stats->target_scale = scale;
             }
             if (e <= 0.05 * n_quads || sub.quads <= 0.0) break;
-            scale *= sqrt(n_quads / sub.quads);
+            if (sub.quads < n_quads) below = scale;
+            else above = scale;
+            if (below > 0.0 && above > 0.0) scale = sqrt(below * above);
+            else scale *= sqrt(n_quads / sub.quads);
         }
     }
     free(t);

@@ -1,0 +1,144 @@
+#!/usr/bin/env bash
+# End-to-end tests of `seamquad quantize` (then `seamquad extract`):
+#  - the seamless UV stored in mpz/eight, holes3, knot1, femur and elk at
+#    1K quads (femur's and elk's maps are strongly distorted around their
+#    cones, so extract must untangle folded quads there): the referee
+#    (shared/tools/check_quad.py MESH QUADS --cones CONES) passes the quad
+#    mesh completely, the count is within 5% of the request (elk: the
+#    fewest its T-mesh allows, 1348) and equals the extracted one;
+#  - below the fewest quads the T-mesh allows, that fewest is built and
+#    named; --edge-length gives a map too; --svg writes a picture;
+#  - bad input: a flipped UV triangle, a seam moved off its transition, a
+#    map without vt, the map of another mesh, cones the map does not have:
+#    exit 1, a message naming the problem, nothing written; a wrong command
+#    line (no --map, --quads 0, -5, 2e8, both --quads and --edge-length, an
+#    unknown --targets): exit 2, nothing written.
+# Prints PASS/FAIL per case and a total.
+set -u
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${SQ_BIN:-$root/build/bin/seamquad}
+shared=${SQ_SHARED_DIR:-$root/../shared}
+referee=$shared/tools/check_quad.py
+data=$shared/data/mpz
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# within5 N ASKED: |N - ASKED| <= 5% of ASKED
+within5() { python3 -c "import sys; n, a = float('$1'), float('$2'); sys.exit(0 if abs(n - a) <= 0.05 * a else 1)"; }
+
+# --- published maps through quantize and extract ----------------------------
+for name in eight holes3 knot1 femur elk; do
+  mesh=$data/$name.obj
+  cones=$data/${name}_Th_hat
+  if ! "$bin" quantize "$mesh" --map "$mesh" --cones "$cones" --quads 1000 -o "$tmp/$name.igm.obj" \
+      --json >"$tmp/$name.json" 2>"$tmp/$name.err"; then
+    bad "$name: quantize failed: $(tail -1 "$tmp/$name.err")"
+    continue
+  fi
+  quads=$(python3 -c "import json; print(int(json.load(open('$tmp/$name.json'))['quads']))")
+  least=$(python3 -c "import json; print(int(json.load(open('$tmp/$name.json'))['min_quads']))")
+  # within 5% of the request, or the fewest the T-mesh allows when that is more
+  if within5 "$quads" 1000 || { [ "$least" -gt 1000 ] && [ "$quads" = "$least" ]; }; then ok; else
+    bad "$name: $quads quads for 1000 (fewest $least)"
+  fi
+  if ! "$bin" extract "$mesh" "$tmp/$name.igm.obj" -o "$tmp/$name.quads.obj" --cones "$cones" --quiet \
+      2>"$tmp/$name.err"; then
+    bad "$name: extract failed: $(tail -1 "$tmp/$name.err")"
+    continue
+  fi
+  nq=$(grep -c '^f ' "$tmp/$name.quads.obj")
+  if [ "$nq" = "$quads" ]; then ok; else bad "$name: extract gave $nq quads, quantize said $quads"; fi
+  python3 "$referee" "$mesh" "$tmp/$name.quads.obj" --cones "$cones" --json "$tmp/$name.ref.json" \
+    >"$tmp/$name.ref" 2>&1
+  rc=$?
+  if [ $rc = 0 ]; then ok; else bad "$name: referee: $(tail -1 "$tmp/$name.ref")"; fi
+done
+
+# --- the text summary, the minimum, --edge-length, --svg ---------------------
+mesh=$data/knot1.obj
+cones=$data/knot1_Th_hat
+out=$("$bin" quantize "$mesh" --map "$mesh" --cones "$cones" --quads 10 -o "$tmp/min.igm.obj" 2>&1)
+if [ $? = 0 ] && echo "$out" | grep -q "the fewest this T-mesh allows is about" &&
+  echo "$out" | grep -q "verified" && [ -s "$tmp/min.igm.obj" ]; then ok; else bad "minimum: $out"; fi
+if "$bin" quantize "$mesh" --map "$mesh" --edge-length 0.05 -o "$tmp/len.igm.obj" --svg "$tmp/t.svg" \
+    --quiet && [ -s "$tmp/len.igm.obj" ] && grep -q '<svg' "$tmp/t.svg"; then ok; else bad "--edge-length / --svg"; fi
+
+# --- bad input: exit 1, a message, nothing written ---------------------------
+# edit FILE OUT PYTHON: rewrite the OBJ lines through a python expression
+edit() {
+  python3 - "$1" "$2" "$3" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+exec(sys.argv[3])
+open(sys.argv[2], "w").write("\n".join(lines))
+PY
+}
+mesh=$data/eight.obj
+cones=$data/eight_Th_hat
+# a flipped UV triangle: the first face's first two corners swap their vt
+edit "$mesh" "$tmp/flip.obj" '
+i = next(k for k, l in enumerate(lines) if l.startswith("f "))
+c = lines[i].split()
+a, b = c[1].split("/"), c[2].split("/")
+c[1], c[2] = a[0] + "/" + b[1], b[0] + "/" + a[1]
+lines[i] = " ".join(c)'
+# a seam corner moved by 1e-3: find a vt used with two vertices' seams
+edit "$mesh" "$tmp/seam.obj" '
+from collections import defaultdict
+uses = defaultdict(set)
+for l in lines:
+    if l.startswith("f "):
+        for c in l.split()[1:]:
+            v, t = c.split("/")[:2]
+            uses[v].add(t)
+v = next(v for v, ts in uses.items() if len(ts) > 1)
+t = int(sorted(uses[v])[0])
+idx = [k for k, l in enumerate(lines) if l.startswith("vt ")][t - 1]
+u, w = lines[idx].split()[1:3]
+lines[idx] = "vt %r %s" % (float(u) + 1e-3, w)'
+edit "$mesh" "$tmp/novt.obj" '
+lines = [l for l in lines if not l.startswith("vt ")]
+lines = [("f " + " ".join(c.split("/")[0] for c in l.split()[1:])) if l.startswith("f ") else l for l in lines]'
+python3 - "$cones" "$tmp/cones_moved" <<'PY'
+import math, sys
+v = [float(x) for x in open(sys.argv[1])]
+i = next(k for k, a in enumerate(v) if abs(a - 2 * math.pi) > 1e-6)
+j = next(k for k, a in enumerate(v) if abs(a - 2 * math.pi) < 1e-6)
+v[i], v[j] = v[j], v[i]
+open(sys.argv[2], "w").write("".join("%.17g\n" % a for a in v))
+PY
+expect1() { # NAME MESH MAP CONES NEEDLE
+  local name=$1 m=$2 map=$3 c=$4 needle=$5 args=()
+  [ -n "$c" ] && args=(--cones "$c")
+  "$bin" quantize "$m" --map "$map" "${args[@]}" --quads 500 -o "$tmp/bad.igm.obj" >"$tmp/bad.out" 2>"$tmp/bad.err"
+  local rc=$?
+  if [ $rc = 1 ] && grep -qi "$needle" "$tmp/bad.err" && [ ! -e "$tmp/bad.igm.obj" ]; then ok; else
+    bad "$name: rc $rc, $(cat "$tmp/bad.err")"
+  fi
+}
+expect1 flipped "$mesh" "$tmp/flip.obj" "$cones" "flipped"
+expect1 seam "$mesh" "$tmp/seam.obj" "$cones" "rotation\|angle sum\|flipped"
+expect1 no-vt "$mesh" "$tmp/novt.obj" "" "no texture coordinates"
+expect1 other-mesh "$data/knot1.obj" "$mesh" "" "not a map of the input mesh"
+expect1 other-cones "$mesh" "$mesh" "$tmp/cones_moved" "does not have these cones"
+
+# --- wrong command lines: exit 2 ---------------------------------------------
+expect2() {
+  "$bin" quantize "$@" >"$tmp/bad.out" 2>"$tmp/bad.err"
+  local rc=$?
+  if [ $rc = 2 ] && [ -s "$tmp/bad.err" ] && [ ! -e "$tmp/bad.igm.obj" ]; then ok; else bad "usage $*: rc $rc"; fi
+}
+expect2 "$mesh" --quads 500 -o "$tmp/bad.igm.obj"
+expect2 "$mesh" --map "$mesh" --quads 0 -o "$tmp/bad.igm.obj"
+expect2 "$mesh" --map "$mesh" --quads -5 -o "$tmp/bad.igm.obj"
+expect2 "$mesh" --map "$mesh" --quads 2e8 -o "$tmp/bad.igm.obj"
+expect2 "$mesh" --map "$mesh" --quads 500 --edge-length 0.1 -o "$tmp/bad.igm.obj"
+expect2 "$mesh" --map "$mesh" --quads 500 --targets sideways -o "$tmp/bad.igm.obj"
+expect2 "$mesh" --map "$mesh" --quads 500 -o "$mesh"
+
+echo "cli_quantize: $pass passed, $fail failed"
+[ $fail = 0 ]
