@@ -6,9 +6,9 @@
  * (exact predicate, before anything is changed: a fold is refused, never
  * repaired); every edge's two sides differ by a rotation by r * 90 degrees
  * plus a translation within tol * diagonal; angle sums are multiples of
- * pi/2 and match the cones given. Then either the transitions must already
- * be exact (SQ_MAP_REQUIRE_EXACT) or the map is snapped to a dyadic grid
- * (sq_map_snap.c), and the result passes sq_map_check. */
+ * pi/2 and match the cones given. A map whose transitions are exact is
+ * kept as it is; otherwise it is refused (SQ_MAP_REQUIRE_EXACT) or snapped
+ * to a dyadic grid (sq_map_snap.c). The result passes sq_map_check. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -286,9 +286,10 @@ sq_status sq_map_from_soup(const sq_soup *soup, const sq_mesh *input, const int3
         for (uint32_t h = 0; h < m->nh; h++) rep->seam_edges += seam[h];
         rep->seam_edges /= 2;
         for (uint32_t v = 0; v < m->nv; v++) rep->cones += out->valence[v] != 4;
-        if (flags & SQ_MAP_REQUIRE_EXACT)
-            st = require_exact(soup, out, err);
-        else
+        /* an exact map (param's) is kept as it is; otherwise snapped */
+        sq_error exact_err;
+        st = require_exact(soup, out, (flags & SQ_MAP_REQUIRE_EXACT) ? err : &exact_err);
+        if (st && !(flags & SQ_MAP_REQUIRE_EXACT))
             st = sq_map_snap(out, seam, (tol > 0 ? tol : 1e-9) * diag, rep, err);
     }
     free(seam);
