@@ -1,5 +1,7 @@
 #include "cli_common.h"
 
+#include <string.h>
+
 #include "sq_cones.h"
 
 void sq_json_string(FILE *f, const char *s)
@@ -52,4 +54,22 @@ sq_status sq_cli_read_cones(const char *path, const sq_mesh *mesh, int32_t *val,
         sq_error_set(err, st, "%s: %s", path, msg);
     }
     return st;
+}
+
+void sq_json_open_map_report(sq_status st, const char *mesh, const char *map, const char *out)
+{
+    printf("{\n  \"ok\": %s,\n  \"mesh\": ", st == SQ_OK ? "true" : "false");
+    sq_json_string(stdout, mesh);
+    printf(",\n  \"map\": ");
+    sq_json_string(stdout, map);
+    printf(",\n  \"output\": ");
+    sq_json_string(stdout, out);
+}
+
+void sq_cli_name_file(sq_error *err, const char *path)
+{
+    if (!err || !path || !strncmp(err->msg, path, strlen(path))) return;
+    char msg[SQ_ERROR_MSG_MAX];
+    snprintf(msg, sizeof msg, "%s", err->msg);
+    sq_error_set(err, err->code, "%s: %s", path, msg);
 }

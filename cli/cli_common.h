@@ -33,6 +33,15 @@ int sq_cmd_extract(int argc, char **argv);
  * report (no leading comma or newline) to stdout. */
 void sq_json_error(sq_status code, const char *stage, const char *message);
 
+/* Opens the --json report of a command that reads a mesh and a map and
+ * writes one output: `{`, then "ok", "mesh", "map" and "output" (no
+ * trailing comma or newline). */
+void sq_json_open_map_report(sq_status st, const char *mesh, const char *map, const char *out);
+
+/* Puts "PATH: " before err's message unless it starts with PATH already
+ * (the library names elements; the command names the file). */
+void sq_cli_name_file(sq_error *err, const char *path);
+
 /* Writes s as a JSON string literal (with quotes) to f. */
 void sq_json_string(FILE *f, const char *s);
 

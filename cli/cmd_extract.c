@@ -152,12 +152,7 @@ static void print_text(const report *r)
 static void print_json(const report *r, sq_status st, const char *stage, const char *msg)
 {
     const sq_extract_stats *s = &r->st;
-    printf("{\n  \"ok\": %s,\n  \"mesh\": ", st == SQ_OK ? "true" : "false");
-    sq_json_string(stdout, r->mesh_path);
-    printf(",\n  \"map\": ");
-    sq_json_string(stdout, r->map_path);
-    printf(",\n  \"output\": ");
-    sq_json_string(stdout, r->out_path);
+    sq_json_open_map_report(st, r->mesh_path, r->map_path, r->out_path);
     if (r->cones_path) {
         printf(",\n  \"cones_file\": ");
         sq_json_string(stdout, r->cones_path);
@@ -286,21 +281,13 @@ int sq_cmd_extract(int argc, char **argv)
                          SQ_MAP_REQUIRE_EXACT | SQ_MAP_REQUIRE_INTEGER | SQ_MAP_ALLOW_FLAT_3D, &M,
                          &r.map, &err);
         r.t_map = sq_now() - t1;
-        if (st && strncmp(err.msg, r.map_path, strlen(r.map_path))) { /* name the file */
-            char msg[SQ_ERROR_MSG_MAX];
-            snprintf(msg, sizeof msg, "%s", err.msg);
-            sq_error_set(&err, st, "%s: %s", r.map_path, msg);
-        }
+        if (st) sq_cli_name_file(&err, r.map_path);
     }
     if (!st) {
         r.map_nv = M.mesh.nv, r.map_nf = M.mesh.nf;
         stage = "extract";
         st = sq_extract(&M, &Q, &r.st, &err);
-        if (st) { /* the library names elements; the file is ours to name */
-            char msg[SQ_ERROR_MSG_MAX];
-            snprintf(msg, sizeof msg, "%s", err.msg);
-            sq_error_set(&err, st, "%s: %s", r.map_path, msg);
-        }
+        if (st) sq_cli_name_file(&err, r.map_path);
     }
     if (!st && r.untangle) {
         stage = "untangle";

@@ -126,12 +126,7 @@ static void print_text(const report *r)
 static void print_json(const report *r, sq_status st, const char *stage, const char *msg)
 {
     const sq_quantize_stats *s = &r->st;
-    printf("{\n  \"ok\": %s,\n  \"mesh\": ", st == SQ_OK ? "true" : "false");
-    sq_json_string(stdout, r->mesh_path);
-    printf(",\n  \"map\": ");
-    sq_json_string(stdout, r->map_path);
-    printf(",\n  \"output\": ");
-    sq_json_string(stdout, r->out_path);
+    sq_json_open_map_report(st, r->mesh_path, r->map_path, r->out_path);
     if (r->quads > 0) printf(",\n  \"quads_asked\": %.0f", r->quads);
     else printf(",\n  \"edge_length\": %.17g", r->edge_length);
     printf(",\n  \"targets\": \"%s\"", r->targets == SQ_TARGETS_MAP ? "map" : "surface");
@@ -275,11 +270,7 @@ int sq_cmd_quantize(int argc, char **argv)
         stage = "map";
         st = sq_map_read(r.map_path, &mesh, valence, 1e-9, 0, &M, &r.map, &err);
         r.t_map = sq_now() - t1;
-        if (st && strncmp(err.msg, r.map_path, strlen(r.map_path))) {
-            char msg[SQ_ERROR_MSG_MAX];
-            snprintf(msg, sizeof msg, "%s", err.msg);
-            sq_error_set(&err, st, "%s: %s", r.map_path, msg);
-        }
+        if (st) sq_cli_name_file(&err, r.map_path);
     }
     if (!st) {
         r.map_nv = M.mesh.nv, r.map_nf = M.mesh.nf;

@@ -21,6 +21,8 @@
 
 #include <cmocka.h>
 
+#include "sq_test_model.h"
+
 #include "sq_cones.h"
 #include "sq_io.h"
 #include "sq_map.h"
@@ -34,32 +36,6 @@ static const char *MODELS[] = {"block",  "cup",       "eight",  "elk",        "f
                                "knot1",  "rocker_arm", "sculpt", "trim-star", "twirl"};
 #define NMODELS (sizeof MODELS / sizeof MODELS[0])
 
-typedef struct model {
-    sq_soup soup;
-    sq_mesh mesh;
-    int32_t *valence;
-} model;
-
-static void load(const char *name, model *md)
-{
-    char path[512];
-    sq_error err;
-    memset(md, 0, sizeof *md);
-    snprintf(path, sizeof path, "%s/data/mpz/%s.obj", SQ_SHARED_DIR, name);
-    assert_int_equal(sq_read_mesh(path, &md->soup, &err), SQ_OK);
-    assert_int_equal(sq_mesh_from_soup(&md->soup, 0, &md->mesh, &err), SQ_OK);
-    md->valence = malloc(md->mesh.nv * sizeof *md->valence);
-    assert_non_null(md->valence);
-    snprintf(path, sizeof path, "%s/data/mpz/%s_Th_hat", SQ_SHARED_DIR, name);
-    assert_int_equal(sq_cones_read(path, md->mesh.nv, md->valence, NULL, &err), SQ_OK);
-}
-
-static void unload(model *md)
-{
-    sq_soup_free(&md->soup);
-    sq_mesh_free(&md->mesh);
-    free(md->valence);
-}
 
 static void test_published_maps_made_exact(void **state)
 {

@@ -27,6 +27,8 @@
 
 #include <cmocka.h>
 
+#include "sq_test_model.h"
+
 #include "sq_cones.h"
 #include "sq_extract.h"
 #include "sq_io.h"
@@ -44,23 +46,12 @@ static const char *MODELS[] = {"block", "cup",    "eight", "elk",        "fandis
 
 static void load_map(const char *name, sq_map *M)
 {
-    char path[512];
+    model md;
     sq_error err;
-    sq_soup soup;
-    sq_mesh mesh;
-    memset(&soup, 0, sizeof soup);
-    snprintf(path, sizeof path, "%s/data/mpz/%s.obj", SQ_SHARED_DIR, name);
-    assert_int_equal(sq_read_mesh(path, &soup, &err), SQ_OK);
-    assert_int_equal(sq_mesh_from_soup(&soup, 0, &mesh, &err), SQ_OK);
-    int32_t *val = malloc(mesh.nv * sizeof *val);
-    assert_non_null(val);
-    snprintf(path, sizeof path, "%s/data/mpz/%s_Th_hat", SQ_SHARED_DIR, name);
-    assert_int_equal(sq_cones_read(path, mesh.nv, val, NULL, &err), SQ_OK);
-    sq_status st = sq_map_from_soup(&soup, &mesh, val, 1e-9, 0, M, NULL, &err);
+    load(name, &md);
+    sq_status st = sq_map_from_soup(&md.soup, &md.mesh, md.valence, 1e-9, 0, M, NULL, &err);
     if (st) fail_msg("%s: %s", name, err.msg);
-    free(val);
-    sq_mesh_free(&mesh);
-    sq_soup_free(&soup);
+    unload(&md);
 }
 
 static double uv_area(const sq_map *M)

@@ -34,6 +34,8 @@
 
 #include <cmocka.h>
 
+#include "sq_test_model.h"
+
 #include "sq_cones.h"
 #include "sq_io.h"
 #include "sq_map.h"
@@ -307,32 +309,6 @@ static void tmp_remove(tmpdir *t, const char *file)
     unlink(p);
 }
 
-typedef struct model {
-    sq_soup soup;
-    sq_mesh mesh;
-    int32_t *valence;
-} model;
-
-static void load(const char *name, model *md)
-{
-    char path[512];
-    sq_error err;
-    memset(md, 0, sizeof *md);
-    snprintf(path, sizeof path, "%s/data/mpz/%s.obj", SQ_SHARED_DIR, name);
-    if (sq_read_mesh(path, &md->soup, &err)) fail_msg("%s", err.msg);
-    if (sq_mesh_from_soup(&md->soup, 0, &md->mesh, &err)) fail_msg("%s", err.msg);
-    md->valence = malloc(md->mesh.nv * sizeof *md->valence);
-    assert_non_null(md->valence);
-    snprintf(path, sizeof path, "%s/data/mpz/%s_Th_hat", SQ_SHARED_DIR, name);
-    if (sq_cones_read(path, md->mesh.nv, md->valence, NULL, &err)) fail_msg("%s", err.msg);
-}
-
-static void unload(model *md)
-{
-    sq_soup_free(&md->soup);
-    sq_mesh_free(&md->mesh);
-    free(md->valence);
-}
 
 /* param's map of model `name`: built, written, read back exact */
 static void param_map(const char *name, tmpdir *td, sq_map *M, uint64_t *quads)
