@@ -391,6 +391,19 @@ static int split_polygon(ctx *C, uint32_t f, const line *lines, uint32_t li, con
     return 1;
 }
 
+/* sign(coordinate of p along line L - x), exactly: p lies on L; its
+ * coordinate along L is exact unless p is the crossing of L itself with a
+ * mesh edge, where orient2d against the crossing of L and the line
+ * through x decides. x = +-INFINITY: the sign of -x. */
+static int along_sign(const ctx *C, uint32_t f, const pvert *p, line L, double x)
+{
+    if (isinf(x)) return x > 0 ? -1 : 1;
+    line M = {(uint8_t)(1 - L.axis), x};
+    if (p->kind == 1 && !p->both && p->on.axis == L.axis)
+        return side_edge_point(corner_uv(C, f, p->edge), corner_uv(C, f, (p->edge + 1) % 3), p->on, M);
+    return sign_d(p->uv[M.axis] - x);
+}
+
 /* Chord test: does the cell edge p -> q (support line li, or the face's
  * edge) lie on a chord of face f? */
 static int on_chord(const ctx *C, uint32_t f, const line *lines, uint32_t support, const pvert *p,
@@ -406,10 +419,14 @@ static int on_chord(const ctx *C, uint32_t f, const line *lines, uint32_t suppor
         else if (a[1] == b[1]) L.axis = 1, L.c = a[1];
         else return 0;
     }
-    double mid = 0.5 * (p->uv[1 - L.axis] + q->uv[1 - L.axis]);
     for (uint32_t k = C->chord_off[f]; k < C->chord_off[f + 1]; k++) {
         const sq_chord *ch = C->chords + C->chord_idx[k];
-        if (ch->axis == L.axis && ch->c == L.c && mid >= ch->lo && mid <= ch->hi) return 1;
+        if (ch->axis != L.axis || ch->c != L.c) continue;
+        /* both ends within the chord's extent, decided exactly (an edge a
+         * rounding error long beyond a chord's end is not on it) */
+        if (along_sign(C, f, p, L, ch->lo) >= 0 && along_sign(C, f, q, L, ch->lo) >= 0 &&
+            along_sign(C, f, p, L, ch->hi) <= 0 && along_sign(C, f, q, L, ch->hi) <= 0)
+            return 1;
     }
     return 0;
 }

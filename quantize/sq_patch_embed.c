@@ -15,10 +15,10 @@ typedef struct plmap {
     double *x, *y;
 } plmap;
 
+/* by the new coordinate: the boundary's order, set by quantization */
 static int cmp_pair(const void *a, const void *b)
 {
     const double *p = a, *q = b;
-    if (p[0] != q[0]) return (p[0] > q[0]) - (p[0] < q[0]);
     return (p[1] > q[1]) - (p[1] < q[1]);
 }
 
@@ -69,14 +69,14 @@ static sq_status side_map(const sq_patch *P, const double *out_uv, int k, uint8_
     for (uint32_t i = 0; i < n; i++) {
         F->x[i] = buf[2 * (size_t)i];
         F->y[i] = buf[2 * (size_t)i + 1];
-        /* the maps' coordinates agree in order (two vertices closer than
-         * the old coordinates resolve may share one: computed crossings) */
-        if (i && !(F->x[i] >= F->x[i - 1] && F->y[i] > F->y[i - 1])) {
+        /* the old coordinates follow the same order up to their rounding
+         * (computed crossings): made non-decreasing */
+        if (i && F->x[i] < F->x[i - 1]) F->x[i] = F->x[i - 1];
+        if (i && !(F->y[i] > F->y[i - 1])) {
             free(buf);
             return sq_error_set(err, SQ_ERR_INTERNAL,
-                                "patch: boundary vertices at %.17g and %.17g of one side are not "
-                                "in increasing order in both maps (%.17g, %.17g)",
-                                F->x[i - 1], F->x[i], F->y[i - 1], F->y[i]);
+                                "patch: two boundary vertices of one side share the place %.17g",
+                                F->y[i]);
         }
     }
     free(buf);

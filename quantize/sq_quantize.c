@@ -144,8 +144,7 @@ done:
 }
 
 /* The T-mesh's pieces as chords: a piece on the line v = c (running along
- * u) or u = c; an end on a mesh edge extends the chord to the face's
- * boundary, other ends (vertices, nodes) bound it exactly. */
+ * u) or u = c, bounded by its ends. */
 static sq_chord *pieces_to_chords(const sq_tmesh *T, uint32_t *n)
 {
     sq_chord *ch = malloc(((size_t)T->n_pieces + 1) * sizeof *ch);
@@ -154,8 +153,13 @@ static sq_chord *pieces_to_chords(const sq_tmesh *T, uint32_t *n)
     for (uint32_t i = 0; i < T->n_pieces; i++) {
         const sq_tmesh_piece *P = T->pieces + i;
         int plus = P->dir == 0 || P->dir == 1;
-        double a = P->from.kind == SQ_TMESH_ON_EDGE ? (plus ? -INFINITY : INFINITY) : P->from.s;
-        double b = P->to.kind == SQ_TMESH_ON_EDGE ? (plus ? INFINITY : -INFINITY) : P->to.s;
+        /* an end crossing a mesh edge (rounded position) extends the chord
+         * to the face's boundary; an exact end (a vertex, a node, also a
+         * node inside an edge the piece runs along) bounds it */
+        int open_from = P->from.kind == SQ_TMESH_ON_EDGE && !P->from.exact;
+        int open_to = P->to.kind == SQ_TMESH_ON_EDGE && !P->to.exact;
+        double a = open_from ? (plus ? -INFINITY : INFINITY) : P->from.s;
+        double b = open_to ? (plus ? INFINITY : -INFINITY) : P->to.s;
         if (a == b) continue;
         ch[k].face = P->face;
         ch[k].axis = (P->dir & 1) ? 0 : 1;
