@@ -57,15 +57,13 @@ void sq_qlayout_free(sq_qlayout *L)
 }
 
 /* The mesh halfedge of face f whose twin lies in face g (the edge a split
- * edge between the two faces lies on), found by the shared vertices. */
-static uint32_t mesh_edge(const sq_mesh *m, uint32_t f, uint32_t g, uint32_t va, uint32_t vb)
+ * edge between the two faces lies on; two triangles of a closed manifold
+ * mesh share at most one edge unless they are a degenerate pair). */
+static uint32_t mesh_edge(const sq_mesh *m, uint32_t f, uint32_t g)
 {
     uint32_t h = m->f_he[f];
-    for (int k = 0; k < 3; k++, h = m->he_next[h]) {
-        if (m->he_face[m->he_twin[h]] != g) continue;
-        (void)va, (void)vb;
-        return h;
-    }
+    for (int k = 0; k < 3; k++, h = m->he_next[h])
+        if (m->he_face[m->he_twin[h]] == g) return h;
     return UINT32_MAX;
 }
 
@@ -115,7 +113,7 @@ static sq_status unfold(const sq_map *M, const sq_split *S, sq_qlayout *L, xf *X
                 xf Y = X[t];
                 uint32_t ft = S->tri_face[t], fu = S->tri_face[u];
                 if (ft != fu) {
-                    uint32_t e = mesh_edge(&M->mesh, fu, ft, 0, 0);
+                    uint32_t e = mesh_edge(&M->mesh, fu, ft);
                     if (e == UINT32_MAX) {
                         st = sq_error_set(err, SQ_ERR_INTERNAL,
                                           "quantization: split triangles %u and %u meet across "
