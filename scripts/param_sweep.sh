@@ -5,13 +5,17 @@
 # cone sets (scripts/random_cones.py: random vertices, valences 3/5 with some
 # 2/6, total excess 4*chi, never valence 1 or the torus {3,5}), several seeds
 # per mesh; each output is judged by the referee
-# (../shared/tools/check_param.py MESH CONES OUT.obj --integer). Prints a
+# (../shared/tools/check_param.py MESH CONES OUT.obj --integer). With
+# --quads N each map then goes through `seamquad quantize --quads N` and
+# `seamquad extract`, and the quad mesh is judged by the referee too
+# (../shared/tools/check_quad.py MESH QUADS --cones CONES). Prints a
 # markdown table and a summary; exit 0 only if every run passes.
 #
-# usage: scripts/param_sweep.sh [--seeds N] [--max-faces F] [--keep DIR]
+# usage: scripts/param_sweep.sh [--seeds N] [--max-faces F] [--quads N] [--keep DIR]
 #   --seeds N      cone sets per mesh (default 3; seeds 1..N, also the cut
 #                  graph's --seed)
 #   --max-faces F  skip meshes with more faces (default: no limit)
+#   --quads N      also quantize each map to about N quads and extract them
 #   --keep DIR     keep cone files, outputs and referee reports in DIR
 # env: SQ_BIN (default build/bin/seamquad, built by scripts/build if missing),
 #      SQ_SHARED_DIR (default ../shared)
@@ -21,13 +25,15 @@ shared=${SQ_SHARED_DIR:-$root/../shared}
 bin=${SQ_BIN:-$root/build/bin/seamquad}
 seeds=3
 max_faces=0
+quads=0
 keep=
 while [ $# -gt 0 ]; do
   case "$1" in
     --seeds) seeds=$2; shift 2 ;;
     --max-faces) max_faces=$2; shift 2 ;;
+    --quads) quads=$2; shift 2 ;;
     --keep) keep=$2; shift 2 ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) echo "param_sweep: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -36,8 +42,8 @@ if [ -n "$keep" ]; then mkdir -p "$keep" && work=$keep; else work=$(mktemp -d); 
 
 pass=0
 fail=0
-echo "| mesh | genus | faces | seed | cones | faces out | time (s) | result |"
-echo "|---|---:|---:|---:|---|---:|---:|---|"
+echo "| mesh | genus | faces | seed | cones | faces out | time (s) | result | quads | quads result |"
+echo "|---|---:|---:|---:|---|---:|---:|---|---:|---|"
 while IFS=$'\t' read -r file _ _ _ _ _ nf closed genus cones _; do
   [ "$file" = file ] && continue
   [ "$closed" = yes ] && [ "$cones" = - ] || continue
@@ -48,7 +54,7 @@ while IFS=$'\t' read -r file _ _ _ _ _ nf closed genus cones _; do
   for seed in $(seq 1 "$seeds"); do
     base=$work/${name}_s$seed
     vals=$(python3 "$root/scripts/random_cones.py" "$mesh" "${base}_Th_hat" --seed "$seed") || {
-      fail=$((fail + 1)); echo "| $file | $genus | $nf | $seed | - | - | - | FAIL: cone generator |"; continue; }
+      fail=$((fail + 1)); echo "| $file | $genus | $nf | $seed | - | - | - | FAIL: cone generator | - | - |"; continue; }
     hist=$(echo "$vals" | tr ',' '\n' | sort -n | uniq -c | awk '{printf "%s%s:%s", sep, $2, $1; sep=" "}')
     [ -n "$hist" ] || hist="none"
     t0=$(date +%s.%N)
@@ -58,16 +64,34 @@ while IFS=$'\t' read -r file _ _ _ _ _ nf closed genus cones _; do
     t=$(printf '%.2f' "$(echo "$(date +%s.%N) - $t0" | bc)")
     if [ $rc -ne 0 ]; then
       fail=$((fail + 1))
-      echo "| $file | $genus | $nf | $seed | $hist | - | $t | FAIL: exit $rc: $(tail -1 "$base.err" | cut -c1-120 | tr '|' '/') |"
+      echo "| $file | $genus | $nf | $seed | $hist | - | $t | FAIL: exit $rc: $(tail -1 "$base.err" | cut -c1-120 | tr '|' '/') | - | - |"
       continue
     fi
     fout=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["faces_out"])' "$base.json" 2>/dev/null || echo "?")
     if python3 "$shared/tools/check_param.py" "$mesh" "${base}_Th_hat" "$base.obj" --integer >"$base.ref" 2>&1; then
-      pass=$((pass + 1))
-      echo "| $file | $genus | $nf | $seed | $hist | $fout | $t | PASS |"
+      qcol="| - | - |"
+      ok=1
+      if [ "$quads" -gt 0 ]; then
+        if ! "$bin" quantize "$mesh" --map "$base.obj" --cones "${base}_Th_hat" --quads "$quads" \
+            -o "$base.igm.obj" --quiet 2>"$base.qerr" ||
+          ! "$bin" extract "$mesh" "$base.igm.obj" -o "$base.quads.obj" --cones "${base}_Th_hat" \
+            --quiet 2>>"$base.qerr"; then
+          ok=0
+          qcol="| - | FAIL: $(tail -1 "$base.qerr" | cut -c1-100 | tr '|' '/') |"
+        elif python3 "$shared/tools/check_quad.py" "$mesh" "$base.quads.obj" --cones "${base}_Th_hat" \
+            >"$base.qref" 2>&1; then
+          qcol="| $(grep -c '^f ' "$base.quads.obj") | PASS |"
+        else
+          ok=0
+          qcol="| $(grep -c '^f ' "$base.quads.obj") | FAIL: $(tail -1 "$base.qref" | cut -c1-100 | tr '|' '/') |"
+        fi
+        [ -n "$keep" ] || rm -f "$base.igm.obj" "$base.quads.obj"
+      fi
+      if [ $ok = 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); fi
+      echo "| $file | $genus | $nf | $seed | $hist | $fout | $t | PASS $qcol"
     else
       fail=$((fail + 1))
-      echo "| $file | $genus | $nf | $seed | $hist | $fout | $t | FAIL: referee: $(tail -1 "$base.ref" | cut -c1-120 | tr '|' '/') |"
+      echo "| $file | $genus | $nf | $seed | $hist | $fout | $t | FAIL: referee: $(tail -1 "$base.ref" | cut -c1-120 | tr '|' '/') | - | - |"
     fi
     [ -n "$keep" ] || rm -f "$base.obj"
   done
