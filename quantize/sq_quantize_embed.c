@@ -41,11 +41,14 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
      * across edges off the chords (a face may touch itself at a vertex) */
     uint32_t *wedge = malloc(((size_t)m->nh + 1) * sizeof *wedge);
     uint32_t *loc = malloc(((size_t)m->nh + 1) * sizeof *loc), *stamp = malloc(((size_t)m->nh + 1) * sizeof *stamp);
-    uint32_t *lv = malloc(((size_t)S->nv + 1) * sizeof *lv); /* local -> vertex */
-    double *old_uv = malloc(2 * ((size_t)S->nv + 1) * sizeof *old_uv);
-    double *lpos = malloc(3 * ((size_t)S->nv + 1) * sizeof *lpos);
-    double *new_uv = malloc(2 * ((size_t)S->nv + 1) * sizeof *new_uv);
-    uint8_t *fixed = malloc((size_t)S->nv + 1);
+    /* a patch's local vertices: at most one per corner (a patch that
+     * touches itself has more of them than the mesh has vertices) */
+    size_t nloc = (size_t)m->nh + 1;
+    uint32_t *lv = malloc(nloc * sizeof *lv); /* local -> vertex */
+    double *old_uv = malloc(2 * nloc * sizeof *old_uv);
+    double *lpos = malloc(3 * nloc * sizeof *lpos);
+    double *new_uv = malloc(2 * nloc * sizeof *new_uv);
+    uint8_t *fixed = malloc(nloc);
     uint32_t *ltri = malloc(3 * ((size_t)S->nt + 1) * sizeof *ltri);
     /* the output's vt: one per (patch, vertex) */
     uint32_t *face_uv = malloc(3 * ((size_t)S->nt + 1) * sizeof *face_uv);

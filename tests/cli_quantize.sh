@@ -6,6 +6,10 @@
 #    (shared/tools/check_quad.py MESH QUADS --cones CONES) passes the quad
 #    mesh completely, the count is within 5% of the request (elk: the
 #    fewest its T-mesh allows, 1348) and equals the extracted one;
+#  - random admissible cone sets (scripts/random_cones.py) on small shared
+#    meshes of genus 0 to 3, parametrized by `seamquad param`, then
+#    quantized to about 1000 quads and extracted: the referee passes (the
+#    torus with seed 2 has a T-mesh face that touches itself many times);
 #  - below the fewest quads the T-mesh allows, that fewest is built and
 #    named; --edge-length gives a map too; --svg writes a picture;
 #  - bad input: a flipped UV triangle, a seam moved off its transition, a
@@ -56,6 +60,28 @@ for name in eight holes3 knot1 femur elk; do
     >"$tmp/$name.ref" 2>&1
   rc=$?
   if [ $rc = 0 ]; then ok; else bad "$name: referee: $(tail -1 "$tmp/$name.ref")"; fi
+done
+
+# --- random cone sets: param, quantize, extract, the referee ------------------
+for case in odedstein/torus.obj:2 gpjs/double-torus.obj:1 libigl/3holes.off:2 \
+    odedstein/spot_low_resolution.obj:1 odedstein/fish_low_resolution.obj:3 libigl/bumpy.off:2; do
+  m=${case%%:*}
+  seed=${case##*:}
+  mesh=$shared/data/$m
+  base=$tmp/rand_$(basename "$m" | sed 's/\.[^.]*$//')_$seed
+  python3 "$root/scripts/random_cones.py" "$mesh" "${base}_Th_hat" --seed "$seed" >/dev/null ||
+    { bad "$m: random_cones.py"; continue; }
+  if ! "$bin" param "$mesh" --cones "${base}_Th_hat" -o "$base.obj" --seed "$seed" --quiet >/dev/null 2>"$base.err" ||
+    ! "$bin" quantize "$mesh" --map "$base.obj" --cones "${base}_Th_hat" --quads 1000 -o "$base.igm.obj" \
+      --quiet 2>"$base.err" ||
+    ! "$bin" extract "$mesh" "$base.igm.obj" -o "$base.quads.obj" --cones "${base}_Th_hat" --quiet \
+      2>"$base.err"; then
+    bad "$m seed $seed: $(tail -1 "$base.err")"
+    continue
+  fi
+  if python3 "$referee" "$mesh" "$base.quads.obj" --cones "${base}_Th_hat" >"$base.ref" 2>&1; then ok; else
+    bad "$m seed $seed: referee: $(tail -1 "$base.ref")"
+  fi
 done
 
 # --- the text summary, the minimum, --edge-length, --svg ---------------------
