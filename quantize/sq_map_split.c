@@ -492,6 +492,16 @@ static sq_status emit_cell(ctx *C, uint32_t f, const line *lines, const growbuf 
     return SQ_OK;
 }
 
+/* A new empty cell (a growbuf of pvert) at the end of cells. */
+static growbuf *new_cell(growbuf *cells)
+{
+    growbuf *g = gb_push(cells);
+    if (!g) return NULL;
+    memset(g, 0, sizeof *g);
+    g->size = sizeof(pvert);
+    return g;
+}
+
 /* Step 2: every face cut by its lines, the cells triangulated. */
 static sq_status cut_faces(ctx *C, sq_error *err)
 {
@@ -506,14 +516,9 @@ static sq_status cut_faces(ctx *C, sq_error *err)
         /* the cells, each a growbuf of pvert */
         for (size_t i = 0; i < cells.n; i++) ((growbuf *)cells.p)[i].n = 0;
         size_t ncell = 1;
-        if (!cells.n) {
-            growbuf *g = gb_push(&cells);
-            if (!g) {
-                st = SQ_ERR_NOMEM;
-                break;
-            }
-            memset(g, 0, sizeof *g);
-            g->size = sizeof(pvert);
+        if (!cells.n && !new_cell(&cells)) {
+            st = SQ_ERR_NOMEM;
+            break;
         }
         if ((st = boundary_polygon(C, f, (growbuf *)cells.p))) break;
         for (uint32_t li = 0; li < lines.n && !st; li++) {
@@ -525,15 +530,9 @@ static sq_status cut_faces(ctx *C, sq_error *err)
                 growbuf tmp = *cell;
                 *cell = out[0];
                 out[0] = tmp;
-                if (ncell == cells.n) {
-                    growbuf *g = gb_push(&cells);
-                    if (!g) {
-                        st = SQ_ERR_NOMEM;
-                        break;
-                    }
-                    memset(g, 0, sizeof *g);
-                    g->size = sizeof(pvert);
-                    cell = (growbuf *)cells.p + ci;
+                if (ncell == cells.n && !new_cell(&cells)) {
+                    st = SQ_ERR_NOMEM;
+                    break;
                 }
                 growbuf *dst = (growbuf *)cells.p + ncell++;
                 tmp = *dst;

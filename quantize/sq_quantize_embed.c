@@ -170,10 +170,7 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
                 if (h == L->corner_he[4 * (size_t)p + s]) fixed[l] |= (uint8_t)(1u << ((s + 3) % 4));
                 new_uv[2 * (size_t)l] = nu;
                 new_uv[2 * (size_t)l + 1] = nv_;
-                /* next boundary halfedge */
-                uint32_t g = m->he_next[h], guard = 0;
-                while (!S->on_chord[g] && guard++ < m->nh) g = m->he_next[m->he_twin[g]];
-                h = g;
+                h = sq_qlayout_next_boundary(S, h);
             } while (h != end);
         }
         if (st) break;

@@ -47,6 +47,10 @@ typedef struct sq_qlayout {
 sq_status sq_qlayout_build(const sq_map *M, const sq_split *S, sq_qlayout *L, sq_error *err);
 void sq_qlayout_free(sq_qlayout *L);
 
+/* The boundary halfedge of a patch that follows h (a chord halfedge with
+ * the patch on its left): around h's end, inside the patch. */
+uint32_t sq_qlayout_next_boundary(const sq_split *S, uint32_t h);
+
 /* The integer-grid map: every patch re-embedded onto its integer rectangle
  * for the arc lengths `length` (na), assembled and checked exactly
  * (sq_map_from_soup with SQ_MAP_REQUIRE_EXACT | SQ_MAP_REQUIRE_INTEGER).

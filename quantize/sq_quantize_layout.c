@@ -67,7 +67,7 @@ static uint32_t mesh_edge(const sq_mesh *m, uint32_t f, uint32_t g)
     return UINT32_MAX;
 }
 
-static uint32_t next_boundary(const sq_split *S, uint32_t h)
+uint32_t sq_qlayout_next_boundary(const sq_split *S, uint32_t h)
 {
     const sq_mesh *m = &S->mesh;
     uint32_t g = m->he_next[h];
@@ -192,7 +192,7 @@ static sq_status frames(const sq_split *S, sq_qlayout *L, xf *X, sq_error *err)
         uint32_t g = h;
         do {
             visited[g] = 1;
-            g = next_boundary(S, g);
+            g = sq_qlayout_next_boundary(S, g);
         } while (g != h && !visited[g]);
         if (g != h) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "quantization: patch %u's boundary does not close", p);
@@ -220,7 +220,7 @@ static sq_status frames(const sq_split *S, sq_qlayout *L, xf *X, sq_error *err)
                 loop = g, cap *= 2;
             }
             loop[n++] = h;
-            h = next_boundary(S, h);
+            h = sq_qlayout_next_boundary(S, h);
         } while (h != first[p]);
         int axis_prev = -1;
         double c_prev = 0;
@@ -455,7 +455,7 @@ sq_status sq_qlayout_build(const sq_map *M, const sq_split *S, sq_qlayout *L, sq
                     n++;
                     last = a;
                 }
-                h = next_boundary(S, h);
+                h = sq_qlayout_next_boundary(S, h);
             } while (h != end);
         }
     L->side_off[4 * (size_t)L->np] = n;

@@ -167,17 +167,6 @@ static int node_valence(const sq_map *M, const tm_node *N)
     return N->kind == SQ_TMESH_AT_VERTEX ? M->valence[N->id] : 4;
 }
 
-static int grow(void **p, uint32_t *cap, uint32_t need, size_t size)
-{
-    if (need <= *cap) return 1;
-    uint32_t c = *cap ? *cap : 64;
-    while (c < need) c = c > UINT32_MAX / 2 ? need : 2 * c;
-    void *q = realloc(*p, (size_t)c * size);
-    if (!q) return 0;
-    *p = q, *cap = c;
-    return 1;
-}
-
 /* The left-hand mesh face and direction of the first piece of a dart. */
 static void dart_chart(const sq_map *M, const sq_tmesh *T, uint32_t dart, uint32_t *face, int *dir)
 {

@@ -8,6 +8,8 @@
 #ifndef SQ_TMESH_INTERNAL_H
 #define SQ_TMESH_INTERNAL_H
 
+#include <stdlib.h>
+
 #include <stdint.h>
 
 #include "sq_map.h"
@@ -112,5 +114,18 @@ int sq_tmesh_transform(const sq_map *M, uint32_t h, const double p[2], double ou
 /* Traces the separatrices of every cone (sq_tmesh_trace.c). */
 sq_status sq_tmesh_trace(const sq_map *M, tm_traces *T, sq_error *err);
 void sq_tmesh_traces_free(tm_traces *T);
+
+/* Grows *p (capacity *cap elements of size bytes) to hold need elements,
+ * doubling; 0 when out of memory (then *p is unchanged). */
+static inline int grow(void **p, uint32_t *cap, uint32_t need, size_t size)
+{
+    if (need <= *cap) return 1;
+    uint32_t c = *cap ? *cap : 64;
+    while (c < need) c = c > UINT32_MAX / 2 ? need : 2 * c;
+    void *q = realloc(*p, (size_t)c * size);
+    if (!q) return 0;
+    *p = q, *cap = c;
+    return 1;
+}
 
 #endif

@@ -172,17 +172,6 @@ typedef struct tracer {
     sq_status st;
 } tracer;
 
-static int grow(void **p, uint32_t *cap, uint32_t need, size_t size)
-{
-    if (need <= *cap) return 1;
-    uint32_t c = *cap ? *cap : 64;
-    while (c < need) c = c > UINT32_MAX / 2 ? need : 2 * c;
-    void *q = realloc(*p, (size_t)c * size);
-    if (!q) return 0;
-    *p = q, *cap = c;
-    return 1;
-}
-
 static sq_status fail(tracer *tr, sq_status code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
