@@ -15,6 +15,7 @@ static const subcommand commands[] = {
     {"cones", sq_cmd_cones, "compute cones from a smooth cross field"},
     {"domain", sq_cmd_domain, "build the combinatorial seamless domain of a cone set"},
     {"param", sq_cmd_param, "seamless, locally injective parametrization of a mesh with its cones"},
+    {"optimize", sq_cmd_optimize, "lower a seamless map's distortion, keeping seams, cones, injectivity"},
     {"quantize", sq_cmd_quantize, "an integer-grid map at the size asked, from a seamless map"},
     {"extract", sq_cmd_extract, "the closed pure-quad mesh of an integer-grid map"},
     {"smooth", sq_cmd_smooth, "smooth a quad mesh on the input surface with Ceres"},

@@ -1,0 +1,81 @@
+/* seamquad: distortion optimization of a seamless map that keeps its seams,
+ * cones and injectivity (docs/optimize.md).
+ *
+ * Energy: the symmetric Dirichlet energy, the area-weighted mean over the
+ * triangles of |J|^2 + |J^-1|^2 (J: the triangle's Jacobian from the
+ * surface to the map; 4 for an isometry, infinite for a degenerate or
+ * flipped triangle). The surface is scaled so that its area equals the
+ * map's, so the energy measures shape, not size.
+ *
+ * Unknowns: an affine basis of the seamless maps with the input's rotations
+ * (sq_uv_basis.h): every iterate is seamless by construction.
+ *
+ * Method: projected Newton (per-triangle Hessians made positive
+ * semidefinite by their eigen-decomposition, solved with CHOLMOD). Each step
+ * is first limited to the largest one that keeps every triangle's
+ * orientation (a quadratic per triangle), then shortened until the energy
+ * decreases enough (Armijo), and accepted only if the exact orientation
+ * test (sq_orient2d) finds every triangle positive.
+ *
+ * The result is snapped to a dyadic grid and checked exactly
+ * (sq_map_check, with SQ_MAP_REQUIRE_INTEGER for an integer-grid map); if
+ * that fails, or the energy did not decrease, the map is left unchanged
+ * and the report says why. The map is never made invalid. */
+#ifndef SQ_OPTIMIZE_H
+#define SQ_OPTIMIZE_H
+
+#include <stdint.h>
+
+#include "sq_error.h"
+#include "sq_map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum {
+    /* rotations and translations kept, cones fixed: an integer-grid map
+     * stays one (after quantization) */
+    SQ_OPTIMIZE_FIXED_TRANSITIONS = 0,
+    /* rotations kept, translations free (before quantization) */
+    SQ_OPTIMIZE_FREE_TRANSLATIONS = 1
+};
+
+typedef struct sq_optimize_options {
+    int basis;                /* SQ_OPTIMIZE_FIXED_TRANSITIONS or _FREE_TRANSLATIONS */
+    uint32_t max_iterations;  /* 0: 100                                              */
+    double tolerance;         /* stop when an iteration lowers the energy by less    */
+                              /* than this fraction; 0: 1e-4                         */
+    /* called after every iteration (may be NULL): a progress hook */
+    void (*progress)(void *user, uint32_t iteration, double energy, double step);
+    void *user;
+} sq_optimize_options;
+
+typedef struct sq_optimize_report {
+    uint32_t iterations;      /* accepted Newton steps                               */
+    uint32_t unknowns;        /* real unknowns of the basis                          */
+    double energy_before;     /* area-weighted mean symmetric Dirichlet energy       */
+    double energy_after;
+    double max_energy_before; /* of the worst triangle                               */
+    double max_energy_after;
+    int changed;              /* 1 if M was replaced by the optimized map            */
+    char why[160];            /* why the optimization stopped, or was not applied    */
+    double seconds_basis, seconds_solve, seconds;
+} sq_optimize_report;
+
+/* Optimizes the exact map M in place (it must pass sq_map_check; with
+ * SQ_OPTIMIZE_FIXED_TRANSITIONS and an integer-grid M, the result is one
+ * too). rep may be NULL. An error is returned only for bad arguments, lack
+ * of memory or a solver failure; an optimization that cannot improve the
+ * map leaves it unchanged with rep->changed = 0. */
+sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize_report *rep,
+                          sq_error *err);
+
+/* The energy of M without optimizing it: mean and max (either may be
+ * NULL). Triangles of zero area on the surface are left out. */
+void sq_optimize_energy(const sq_map *M, double *mean, double *max);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

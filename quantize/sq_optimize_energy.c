@@ -1,0 +1,184 @@
+/* seamquad: the symmetric Dirichlet energy of one triangle, its gradient
+ * and its Hessian made positive semidefinite (sq_optimize_internal.h).
+ *
+ * A triangle with corners p0, p1, p2 on the surface gets a 2D frame:
+ * x1 = (|e1|, 0), x2 = (e1.e2 / |e1|, |e1 x e2| / |e1|), e_i = p_i - p0.
+ * With X = [x1 x2] and the map's edge vectors U = [u1 - u0, u2 - u0], the
+ * Jacobian is J = U X^-1 = uv G, uv the 2x3 matrix of corners and
+ * G = D X^-1 (D: 3x2 with rows (-1,-1), (1,0), (0,1)).
+ *
+ * psi(J) = |J|^2 + |J^-1|^2 = f (1 + d^-2), f = |J|^2, d = det J (in 2D,
+ * |J^-1|^2 = |J|^2 / d^2). With g = vec J, c = vec cof(J) (the gradient of
+ * d) and Hd the constant Hessian of d:
+ *   dpsi  = 2 (1 + d^-2) g - 2 f d^-3 c
+ *   d2psi = 2 (1 + d^-2) I - 4 d^-3 (g c^T + c g^T) + 6 f d^-4 c c^T
+ *           - 2 f d^-3 Hd
+ * The 4x4 Hessian is made positive semidefinite by clamping its negative
+ * eigenvalues to zero (Jacobi rotations), then pulled back to the 6 corner
+ * coordinates through G. Cost: a few hundred flops per triangle. */
+#include <math.h>
+#include <string.h>
+
+#include "sq_optimize_internal.h"
+
+int sq_sd_prepare(const double *p0, const double *p1, const double *p2, double scale,
+                  sq_sd_face *F)
+{
+    double e1[3], e2[3], cr[3];
+    for (int i = 0; i < 3; i++) e1[i] = (p1[i] - p0[i]) * scale, e2[i] = (p2[i] - p0[i]) * scale;
+    cr[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    cr[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    double a2 = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+    memset(F, 0, sizeof *F);
+    if (!(l1 > 0) || !(a2 > 0) || !isfinite(a2)) return 0;
+    double x1 = l1, x2x = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1, x2y = a2 / l1;
+    /* X = [[x1, x2x], [0, x2y]], X^-1 = [[1/x1, -x2x/(x1 x2y)], [0, 1/x2y]] */
+    double Xi[2][2] = {{1.0 / x1, -x2x / (x1 * x2y)}, {0.0, 1.0 / x2y}};
+    static const double D[3][2] = {{-1, -1}, {1, 0}, {0, 1}};
+    for (int c = 0; c < 3; c++)
+        for (int b = 0; b < 2; b++) F->G[c][b] = D[c][0] * Xi[0][b] + D[c][1] * Xi[1][b];
+    F->area = 0.5 * a2;
+    if (!isfinite(F->G[0][0] + F->G[0][1] + F->G[1][0] + F->G[1][1] + F->G[2][0] + F->G[2][1])) {
+        memset(F, 0, sizeof *F);
+        return 0;
+    }
+    return 1;
+}
+
+static void jacobian(const sq_sd_face *F, const double uv[6], double J[4])
+{
+    /* J[a][b] = sum_c uv[c][a] G[c][b]; vec order (00, 01, 10, 11) */
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++)
+            J[2 * a + b] = uv[a] * F->G[0][b] + uv[2 + a] * F->G[1][b] + uv[4 + a] * F->G[2][b];
+}
+
+double sq_sd_psi(const sq_sd_face *F, const double uv[6])
+{
+    if (F->area == 0) return 0.0;
+    double J[4];
+    jacobian(F, uv, J);
+    double d = J[0] * J[3] - J[1] * J[2];
+    if (!(d > 0)) return INFINITY;
+    double f = J[0] * J[0] + J[1] * J[1] + J[2] * J[2] + J[3] * J[3];
+    return f * (1.0 + 1.0 / (d * d));
+}
+
+/* Eigen-decomposition of a symmetric 4x4 matrix by cyclic Jacobi
+ * rotations: A = V diag(w) V^T (V's columns are the eigenvectors). */
+static void jacobi4(double A[4][4], double w[4], double V[4][4])
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) V[i][j] = i == j;
+    for (int sweep = 0; sweep < 50; sweep++) {
+        double off = 0, on = 0;
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) {
+                if (i == j) on += A[i][j] * A[i][j];
+                else off += A[i][j] * A[i][j];
+            }
+        if (off <= 1e-30 * on) break;
+        for (int p = 0; p < 3; p++)
+            for (int q = p + 1; q < 4; q++) {
+                if (A[p][q] == 0) continue;
+                double theta = (A[q][q] - A[p][p]) / (2 * A[p][q]);
+                double t = (theta >= 0 ? 1 : -1) / (fabs(theta) + sqrt(theta * theta + 1));
+                double c = 1 / sqrt(t * t + 1), s = t * c;
+                for (int k = 0; k < 4; k++) {
+                    double akp = A[k][p], akq = A[k][q];
+                    A[k][p] = c * akp - s * akq;
+                    A[k][q] = s * akp + c * akq;
+                }
+                for (int k = 0; k < 4; k++) {
+                    double apk = A[p][k], aqk = A[q][k];
+                    A[p][k] = c * apk - s * aqk;
+                    A[q][k] = s * apk + c * aqk;
+                }
+                for (int k = 0; k < 4; k++) {
+                    double vkp = V[k][p], vkq = V[k][q];
+                    V[k][p] = c * vkp - s * vkq;
+                    V[k][q] = s * vkp + c * vkq;
+                }
+            }
+    }
+    for (int i = 0; i < 4; i++) w[i] = A[i][i];
+}
+
+double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, double g[6],
+                       double H[36])
+{
+    memset(g, 0, 6 * sizeof *g);
+    memset(H, 0, 36 * sizeof *H);
+    if (F->area == 0) return 0.0;
+    double J[4];
+    jacobian(F, uv, J);
+    double d = J[0] * J[3] - J[1] * J[2];
+    if (!(d > 0)) return INFINITY;
+    double f = J[0] * J[0] + J[1] * J[1] + J[2] * J[2] + J[3] * J[3];
+    double id = 1.0 / d, id2 = id * id, id3 = id2 * id, id4 = id2 * id2;
+    double c[4] = {J[3], -J[2], -J[1], J[0]};
+    double dpsi[4], A[4][4];
+    for (int i = 0; i < 4; i++) dpsi[i] = 2 * (1 + id2) * J[i] - 2 * f * id3 * c[i];
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            A[i][j] = (i == j ? 2 * (1 + id2) : 0) - 4 * id3 * (J[i] * c[j] + c[i] * J[j]) +
+                      6 * f * id4 * c[i] * c[j];
+    /* Hd: d = J0 J3 - J1 J2 */
+    A[0][3] -= 2 * f * id3, A[3][0] -= 2 * f * id3;
+    A[1][2] += 2 * f * id3, A[2][1] += 2 * f * id3;
+    double w[4], V[4][4];
+    jacobi4(A, w, V);
+    double P[4][4];
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++)
+                if (w[k] > 0) s += V[i][k] * w[k] * V[j][k];
+            P[i][j] = s;
+        }
+    /* pull back: coordinate (c, a) is uv index 2c + a; dJ[2a+b]/duv[2c+a] = G[c][b] */
+    double s = weight * F->area;
+    for (int cc = 0; cc < 3; cc++)
+        for (int a = 0; a < 2; a++) {
+            int k = 2 * cc + a;
+            g[k] = s * (dpsi[2 * a] * F->G[cc][0] + dpsi[2 * a + 1] * F->G[cc][1]);
+        }
+    for (int c1 = 0; c1 < 3; c1++)
+        for (int a1 = 0; a1 < 2; a1++)
+            for (int c2 = 0; c2 < 3; c2++)
+                for (int a2 = 0; a2 < 2; a2++) {
+                    double h = 0;
+                    for (int b1 = 0; b1 < 2; b1++)
+                        for (int b2 = 0; b2 < 2; b2++)
+                            h += P[2 * a1 + b1][2 * a2 + b2] * F->G[c1][b1] * F->G[c2][b2];
+                    H[(2 * c1 + a1) * 6 + 2 * c2 + a2] = s * h;
+                }
+    return f * (1.0 + id2);
+}
+
+double sq_sd_max_step(const double uv[6], const double duv[6])
+{
+    double u1 = uv[2] - uv[0], v1 = uv[3] - uv[1], u2 = uv[4] - uv[0], v2 = uv[5] - uv[1];
+    double du1 = duv[2] - duv[0], dv1 = duv[3] - duv[1], du2 = duv[4] - duv[0],
+           dv2 = duv[5] - duv[1];
+    /* det(alpha) = a alpha^2 + b alpha + c */
+    double c = u1 * v2 - v1 * u2;
+    double b = u1 * dv2 + du1 * v2 - v1 * du2 - dv1 * u2;
+    double a = du1 * dv2 - dv1 * du2;
+    double t = INFINITY;
+    if (fabs(a) <= 1e-14 * (fabs(b) + fabs(c))) {
+        if (b < 0) t = -c / b;
+    } else {
+        double disc = b * b - 4 * a * c;
+        if (disc >= 0) {
+            double sq = sqrt(disc);
+            double q = -0.5 * (b + (b >= 0 ? sq : -sq));
+            double r1 = q / a, r2 = q != 0 ? c / q : INFINITY;
+            if (r1 > 0) t = fmin(t, r1);
+            if (r2 > 0) t = fmin(t, r2);
+        }
+    }
+    return t;
+}

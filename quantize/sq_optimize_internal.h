@@ -1,0 +1,29 @@
+/* seamquad: the per-triangle energy of the optimizer (sq_optimize_energy.c;
+ * not a public header). */
+#ifndef SQ_OPTIMIZE_INTERNAL_H
+#define SQ_OPTIMIZE_INTERNAL_H
+
+typedef struct sq_sd_face {
+    double area;     /* on the (scaled) surface; 0: left out of the energy */
+    double G[3][2];  /* J = uv G (uv: the 2x3 matrix of corners)           */
+} sq_sd_face;
+
+/* The frame of the triangle p0 p1 p2 scaled by `scale`; 0 (and area 0) if
+ * it is degenerate in doubles. */
+int sq_sd_prepare(const double *p0, const double *p1, const double *p2, double scale,
+                  sq_sd_face *F);
+
+/* psi = |J|^2 + |J^-1|^2 of the corners uv (u0 v0 u1 v1 u2 v2); INFINITY
+ * if the map's triangle is not positive in doubles; 0 if area is 0. */
+double sq_sd_psi(const sq_sd_face *F, const double uv[6]);
+
+/* psi, and weight * area * its gradient and projected Hessian (row-major
+ * 6x6) in the corner coordinates. */
+double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, double g[6],
+                       double H[36]);
+
+/* The smallest alpha > 0 at which the triangle uv + alpha duv degenerates
+ * (INFINITY if none). */
+double sq_sd_max_step(const double uv[6], const double duv[6]);
+
+#endif

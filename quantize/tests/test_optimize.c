@@ -1,0 +1,331 @@
+/* Tests of the distortion optimizer (quantize/sq_optimize*.c,
+ * sq_uv_basis.c):
+ *  - the per-triangle energy: 4 at an isometry with zero gradient; the
+ *    gradient matches central differences of psi; the projected Hessian is
+ *    symmetric positive semidefinite; the largest safe step degenerates the
+ *    triangle exactly there;
+ *  - the fixed-transition basis reproduces the map at z0 and keeps every
+ *    seam for any z;
+ *  - integer-grid maps quantized from published maps (eight, holes3,
+ *    sculpt at 1K quads; every model with SQ_LONG_TESTS): optimized with
+ *    fixed transitions, the map is still an integer-grid map (sq_map_check
+ *    with SQ_MAP_REQUIRE_INTEGER), with the same rotations, translations
+ *    and cone points bit for bit, a lower mean energy (recomputed here
+ *    independently of the report), and it extracts into a quad mesh with
+ *    the same quad count;
+ *  - optimizing the result again never makes it worse;
+ *  - a map failing sq_map_check is refused. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "sq_test_model.h"
+
+#include "sq_extract.h"
+#include "sq_map.h"
+#include "sq_optimize.h"
+#include "sq_optimize_internal.h"
+#include "sq_predicates.h"
+#include "sq_quantize.h"
+#include "sq_uv_basis.h"
+
+static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
+static double rnd(void) /* in [-1, 1) */
+{
+    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(rng_state >> 11) / 4503599627370496.0 - 1.0;
+}
+
+static void test_energy_isometry(void **state)
+{
+    (void)state;
+    double p0[3] = {0, 0, 0}, p1[3] = {1, 0, 0}, p2[3] = {0.3, 0.8, 0};
+    sq_sd_face F;
+    assert_int_equal(sq_sd_prepare(p0, p1, p2, 1.0, &F), 1);
+    /* the same triangle rotated by 30 degrees and moved */
+    double c = cos(0.5236), s = sin(0.5236), uv[6];
+    const double *P[3] = {p0, p1, p2};
+    for (int k = 0; k < 3; k++) {
+        uv[2 * k] = c * P[k][0] - s * P[k][1] + 5;
+        uv[2 * k + 1] = s * P[k][0] + c * P[k][1] - 2;
+    }
+    assert_true(fabs(sq_sd_psi(&F, uv) - 4.0) < 1e-12);
+    double g[6], H[36];
+    sq_sd_grad_hess(&F, uv, 1.0, g, H);
+    for (int k = 0; k < 6; k++) assert_true(fabs(g[k]) < 1e-12);
+    /* flipped: infinite */
+    double fl[6] = {uv[0], uv[1], uv[4], uv[5], uv[2], uv[3]};
+    assert_true(isinf(sq_sd_psi(&F, fl)));
+}
+
+/* eigenvalues of a symmetric 6x6 matrix are >= -tol: by trying to
+ * Cholesky-factor H + tol I */
+static int psd6(const double H[36], double tol)
+{
+    double L[36] = {0};
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j <= i; j++) {
+            double s = H[i * 6 + j] + (i == j ? tol : 0);
+            for (int k = 0; k < j; k++) s -= L[i * 6 + k] * L[j * 6 + k];
+            if (i == j) {
+                if (!(s > 0)) return 0;
+                L[i * 6 + i] = sqrt(s);
+            } else {
+                L[i * 6 + j] = s / L[j * 6 + j];
+            }
+        }
+    return 1;
+}
+
+static void test_energy_derivatives(void **state)
+{
+    (void)state;
+    int tried = 0;
+    for (int trial = 0; trial < 200; trial++) {
+        double p[3][3], uv[6];
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < 3; i++) p[k][i] = rnd();
+        for (int k = 0; k < 6; k++) uv[k] = rnd();
+        sq_sd_face F;
+        if (!sq_sd_prepare(p[0], p[1], p[2], 1.0, &F)) continue;
+        if (!isfinite(sq_sd_psi(&F, uv))) continue;
+        double g[6], H[36];
+        double psi = sq_sd_grad_hess(&F, uv, 1.0, g, H);
+        if (psi > 1e4) continue; /* keep central differences accurate */
+        tried++;
+        for (int k = 0; k < 6; k++) {
+            double h = 1e-6, a[6], b[6];
+            memcpy(a, uv, sizeof a);
+            memcpy(b, uv, sizeof b);
+            a[k] += h;
+            b[k] -= h;
+            double fd = F.area * (sq_sd_psi(&F, a) - sq_sd_psi(&F, b)) / (2 * h);
+            assert_true(fabs(fd - g[k]) <= 1e-4 * (1 + fabs(g[k])));
+        }
+        double hmax = 0;
+        for (int k = 0; k < 36; k++) {
+            assert_true(fabs(H[k] - H[(k % 6) * 6 + k / 6]) <= 1e-9 * (1 + fabs(H[k])));
+            hmax = fmax(hmax, fabs(H[k]));
+        }
+        assert_true(psd6(H, 1e-9 * hmax + 1e-12));
+    }
+    assert_true(tried >= 50);
+}
+
+static void test_max_step(void **state)
+{
+    (void)state;
+    int tried = 0;
+    for (int trial = 0; trial < 500; trial++) {
+        double uv[6], d[6];
+        for (int k = 0; k < 6; k++) uv[k] = rnd(), d[k] = 3 * rnd();
+        if (sq_orient2d(uv, uv + 2, uv + 4) <= 0) continue;
+        double a = sq_sd_max_step(uv, d);
+        if (!isfinite(a)) continue;
+        tried++;
+        /* positive just before, zero (to rounding) at a */
+        double t[6], scale = 0;
+        for (int k = 0; k < 6; k++) t[k] = uv[k] + 0.999 * a * d[k], scale = fmax(scale, fabs(uv[k]) + fabs(a * d[k]));
+        assert_true(sq_orient2d(t, t + 2, t + 4) >= 0);
+        for (int k = 0; k < 6; k++) t[k] = uv[k] + a * d[k];
+        double det = (t[2] - t[0]) * (t[5] - t[1]) - (t[3] - t[1]) * (t[4] - t[0]);
+        assert_true(fabs(det) <= 1e-9 * scale * scale);
+    }
+    assert_true(tried >= 50);
+}
+
+static void quantized(const char *name, double quads, model *md, sq_map *igm)
+{
+    sq_error err;
+    sq_map M;
+    load(name, md);
+    if (sq_map_from_soup(&md->soup, &md->mesh, md->valence, 1e-9, 0, &M, NULL, &err))
+        fail_msg("%s: %s", name, err.msg);
+    sq_quantize_options qo = {quads, 0, SQ_TARGETS_MAP};
+    if (sq_quantize(&M, &qo, igm, NULL, &err)) fail_msg("%s: %s", name, err.msg);
+    sq_map_free(&M);
+}
+
+static void test_basis_fixed(void **state)
+{
+    (void)state;
+    model md;
+    sq_map igm;
+    quantized("eight", 1000, &md, &igm);
+    sq_uv_basis B;
+    sq_error err;
+    assert_int_equal(sq_uv_basis_fixed_transitions(&igm, &B, &err), SQ_OK);
+    const sq_mesh *m = &igm.mesh;
+    double *uv = malloc(2 * (size_t)m->nh * sizeof *uv), *z = malloc(B.nz * sizeof *z);
+    assert_non_null(uv);
+    assert_non_null(z);
+    sq_uv_basis_eval(&B, B.z0, uv);
+    for (uint32_t k = 0; k < 2 * m->nh; k++) assert_true(fabs(uv[k] - igm.he_uv[k]) <= 1e-12 * (1 + fabs(uv[k])));
+    for (uint32_t i = 0; i < B.nz; i++) z[i] = B.z0[i] + 0.1 * rnd();
+    sq_uv_basis_eval(&B, z, uv);
+    /* every edge: the twin's corners are the transition of this side's */
+    for (uint32_t h = 0; h < m->nh; h++) {
+        uint32_t g = m->he_twin[h];
+        uint32_t ends[2][2] = {{h, m->he_next[g]}, {m->he_next[h], g}};
+        for (int e = 0; e < 2; e++) {
+            double Rp[2];
+            sq_map_rotate(igm.he_rot[h], uv + 2 * (size_t)ends[e][0], Rp);
+            for (int a = 0; a < 2; a++)
+                assert_true(fabs(Rp[a] + igm.he_t[2 * (size_t)h + a] - uv[2 * (size_t)ends[e][1] + a]) <= 1e-9);
+        }
+    }
+    free(uv);
+    free(z);
+    sq_uv_basis_free(&B);
+    sq_map_free(&igm);
+    unload(&md);
+}
+
+static double mean_energy_here(const sq_map *M)
+{
+    /* independent of sq_optimize_energy's bookkeeping: surface scaled to
+     * the map's area, then the area mean of psi */
+    const sq_mesh *m = &M->mesh;
+    double a3 = 0, auv = 0, sum = 0, area = 0;
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h0 = m->f_he[f], h1 = m->he_next[h0], h2 = m->he_next[h1];
+        const double *u0 = M->he_uv + 2 * (size_t)h0, *u1 = M->he_uv + 2 * (size_t)h1,
+                     *u2 = M->he_uv + 2 * (size_t)h2;
+        auv += 0.5 * ((u1[0] - u0[0]) * (u2[1] - u0[1]) - (u1[1] - u0[1]) * (u2[0] - u0[0]));
+        const double *p0 = m->pos + 3 * (size_t)m->he_vert[h0], *p1 = m->pos + 3 * (size_t)m->he_vert[h1],
+                     *p2 = m->pos + 3 * (size_t)m->he_vert[h2];
+        double e1[3], e2[3];
+        for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+               cz = e1[0] * e2[1] - e1[1] * e2[0];
+        a3 += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+    }
+    double s = sqrt(auv / a3);
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h0 = m->f_he[f], h1 = m->he_next[h0], h2 = m->he_next[h1];
+        double uv[6];
+        uint32_t hc[3] = {h0, h1, h2};
+        for (int k = 0; k < 3; k++) uv[2 * k] = M->he_uv[2 * (size_t)hc[k]], uv[2 * k + 1] = M->he_uv[2 * (size_t)hc[k] + 1];
+        sq_sd_face F;
+        if (!sq_sd_prepare(m->pos + 3 * (size_t)m->he_vert[h0], m->pos + 3 * (size_t)m->he_vert[h1],
+                           m->pos + 3 * (size_t)m->he_vert[h2], s, &F))
+            continue;
+        sum += F.area * sq_sd_psi(&F, uv);
+        area += F.area;
+    }
+    return sum / area;
+}
+
+static void optimize_igm(const char *name, double quads)
+{
+    model md;
+    sq_map igm;
+    sq_error err;
+    quantized(name, quads, &md, &igm);
+    const sq_mesh *m = &igm.mesh;
+    uint8_t *rot = malloc(m->nh);
+    double *t = malloc(2 * (size_t)m->nh * sizeof *t), *cone_uv = malloc(2 * (size_t)m->nh * sizeof *cone_uv);
+    assert_non_null(rot);
+    assert_non_null(t);
+    assert_non_null(cone_uv);
+    memcpy(rot, igm.he_rot, m->nh);
+    memcpy(t, igm.he_t, 2 * (size_t)m->nh * sizeof *t);
+    memcpy(cone_uv, igm.he_uv, 2 * (size_t)m->nh * sizeof *cone_uv);
+    double before = mean_energy_here(&igm);
+    sq_quad_mesh q0;
+    assert_int_equal(sq_extract(&igm, &q0, NULL, &err), SQ_OK);
+
+    sq_optimize_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.basis = SQ_OPTIMIZE_FIXED_TRANSITIONS;
+    opt.max_iterations = 20;
+    sq_optimize_report rep;
+    if (sq_optimize_map(&igm, &opt, &rep, &err)) fail_msg("%s: %s", name, err.msg);
+    print_message("%s %.0f: energy %.4g -> %.4g (worst %.4g -> %.4g), %u iterations, %.2f s: %s\n", name,
+                  quads, rep.energy_before, rep.energy_after, rep.max_energy_before, rep.max_energy_after,
+                  rep.iterations, rep.seconds, rep.why);
+    assert_int_equal(rep.changed, 1);
+    if (sq_map_check(&igm, SQ_MAP_REQUIRE_INTEGER, &err)) fail_msg("%s: %s", name, err.msg);
+    assert_memory_equal(rot, igm.he_rot, m->nh);
+    for (uint32_t k = 0; k < 2 * m->nh; k++) assert_true(t[k] == igm.he_t[k]); /* -0 == 0 */
+    for (uint32_t h = 0; h < m->nh; h++)
+        if (igm.valence[m->he_vert[h]] != 4) {
+            assert_true(igm.he_uv[2 * (size_t)h] == cone_uv[2 * (size_t)h]);
+            assert_true(igm.he_uv[2 * (size_t)h + 1] == cone_uv[2 * (size_t)h + 1]);
+        }
+    double after = mean_energy_here(&igm);
+    assert_true(after < before);
+    assert_true(fabs(after - rep.energy_after) <= 1e-9 * after);
+
+    sq_quad_mesh q1;
+    assert_int_equal(sq_extract(&igm, &q1, NULL, &err), SQ_OK);
+    assert_int_equal(q1.nq, q0.nq);
+    sq_quad_mesh_free(&q0);
+    sq_quad_mesh_free(&q1);
+
+    /* again: never worse */
+    sq_optimize_report rep2;
+    assert_int_equal(sq_optimize_map(&igm, &opt, &rep2, &err), SQ_OK);
+    assert_true(mean_energy_here(&igm) <= after * (1 + 1e-12));
+    if (sq_map_check(&igm, SQ_MAP_REQUIRE_INTEGER, &err)) fail_msg("%s: %s", name, err.msg);
+
+    free(rot);
+    free(t);
+    free(cone_uv);
+    sq_map_free(&igm);
+    unload(&md);
+}
+
+static void test_optimize_igm(void **state)
+{
+    (void)state;
+    if (getenv("SQ_LONG_TESTS")) {
+        static const char *all[] = {"block", "cup", "eight", "elk", "fandisk", "femur", "fertility_tri",
+                                    "genus3", "helmet", "holes3", "homer", "knot1", "rocker_arm",
+                                    "sculpt", "trim-star"};
+        for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) optimize_igm(all[i], 1000);
+    } else {
+        optimize_igm("eight", 1000);
+        optimize_igm("holes3", 1000);
+        optimize_igm("sculpt", 1000);
+    }
+}
+
+static void test_refuses_bad_map(void **state)
+{
+    (void)state;
+    model md;
+    sq_map igm;
+    sq_error err;
+    quantized("eight", 1000, &md, &igm);
+    /* fold the first triangle: swap two corners' UVs */
+    uint32_t h0 = igm.mesh.f_he[0], h1 = igm.mesh.he_next[h0];
+    double tmp[2] = {igm.he_uv[2 * h0], igm.he_uv[2 * h0 + 1]};
+    igm.he_uv[2 * h0] = igm.he_uv[2 * h1];
+    igm.he_uv[2 * h0 + 1] = igm.he_uv[2 * h1 + 1];
+    igm.he_uv[2 * h1] = tmp[0];
+    igm.he_uv[2 * h1 + 1] = tmp[1];
+    sq_optimize_options opt;
+    memset(&opt, 0, sizeof opt);
+    assert_int_not_equal(sq_optimize_map(&igm, &opt, NULL, &err), SQ_OK);
+    assert_non_null(strstr(err.msg, "face"));
+    sq_map_free(&igm);
+    unload(&md);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_energy_isometry),  cmocka_unit_test(test_energy_derivatives),
+        cmocka_unit_test(test_max_step),         cmocka_unit_test(test_basis_fixed),
+        cmocka_unit_test(test_optimize_igm),     cmocka_unit_test(test_refuses_bad_map),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

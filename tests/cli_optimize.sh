@@ -1,0 +1,153 @@
+#!/usr/bin/env bash
+# End-to-end tests of `seamquad optimize`:
+#  - the published seamless maps of mpz/eight, holes3, helmet and femur
+#    (free translations): the referee (shared/tools/check_param.py MESH
+#    CONES MAP) passes the output (injective, seams exact, the cones), and
+#    none of its three distortion figures (mean and max sigma1/sigma2, mean
+#    symmetric Dirichlet) is worse than the input's; helmet's and femur's
+#    mean sigma1/sigma2 (9.51 and 2.65 published) fall below 2;
+#  - param's map of eight (mean sigma1/sigma2 27.7): below 1.5 after
+#    optimization (the published map: 1.44), referee passes;
+#  - an integer-grid map from `quantize --optimize off` with
+#    --translations fixed: still an integer-grid map (extract accepts it),
+#    the same quad count, and the referee passes the quad mesh;
+#  - bad input: a flipped UV triangle, a seam moved off its transition, a
+#    map without vt, the map of another mesh: exit 1, a message naming the
+#    problem, nothing written; a wrong command line: exit 2.
+# Prints PASS/FAIL per case and a total.
+set -u
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${SQ_BIN:-$root/build/bin/seamquad}
+shared=${SQ_SHARED_DIR:-$root/../shared}
+data=$shared/data/mpz
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# figures MESH CONES MAP: "conf_mean conf_max sd_mean" from check_param.py,
+# or nothing when the referee fails
+figures() {
+  python3 "$shared/tools/check_param.py" "$1" "$2" "$3" --json "$tmp/ref.json" >"$tmp/ref.out" 2>&1 || return 1
+  python3 - "$tmp/ref.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))["f_stats"]
+print(d["conformal_mean"], d["conformal_max"], d["sym_dirichlet_mean"])
+PY
+}
+# no_worse "A B C" "D E F": every figure of the second <= the first (+1e-9)
+no_worse() { python3 -c "import sys; a, b = '$1'.split(), '$2'.split(); sys.exit(0 if all(float(y) <= float(x) * (1 + 1e-9) for x, y in zip(a, b)) else 1)"; }
+below() { python3 -c "import sys; sys.exit(0 if float('$1') < float('$2') else 1)"; }
+
+# --- published maps ------------------------------------------------------------
+for name in eight holes3 helmet femur; do
+  mesh=$data/$name.obj
+  cones=$data/${name}_Th_hat
+  if ! "$bin" optimize "$mesh" --map "$mesh" --cones "$cones" -o "$tmp/$name.opt.obj" --quiet 2>"$tmp/err"; then
+    bad "$name: optimize failed: $(tail -1 "$tmp/err")"
+    continue
+  fi
+  before=$(figures "$mesh" "$cones" "$mesh") || { bad "$name: referee fails the published map"; continue; }
+  if after=$(figures "$mesh" "$cones" "$tmp/$name.opt.obj"); then ok; else
+    bad "$name: referee: $(tail -1 "$tmp/ref.out")"
+    continue
+  fi
+  if no_worse "$before" "$after"; then ok; else bad "$name: worse: $before -> $after"; fi
+  case $name in helmet | femur)
+    if below "${after%% *}" 2; then ok; else bad "$name: mean sigma1/sigma2 ${after%% *} >= 2"; fi ;;
+  esac
+done
+
+# --- param's map of eight ------------------------------------------------------
+mesh=$data/eight.obj
+cones=$data/eight_Th_hat
+if "$bin" param "$mesh" --cones "$cones" -o "$tmp/eight.param.obj" --quiet >/dev/null 2>"$tmp/err" &&
+  "$bin" optimize "$mesh" --map "$tmp/eight.param.obj" --cones "$cones" -o "$tmp/eight.popt.obj" --json \
+    >"$tmp/popt.json" 2>"$tmp/err"; then
+  if after=$(figures "$mesh" "$cones" "$tmp/eight.popt.obj") && below "${after%% *}" 1.5; then ok; else
+    bad "param eight: $after $(tail -1 "$tmp/ref.out")"
+  fi
+  if python3 -c "import json, sys; j = json.load(open('$tmp/popt.json')); sys.exit(0 if j['ok'] and j['changed'] and j['energy_after'] < j['energy_before'] else 1)"; then ok; else
+    bad "param eight: --json: $(cat "$tmp/popt.json")"
+  fi
+else
+  bad "param eight: $(tail -1 "$tmp/err")"
+fi
+
+# --- an integer-grid map, transitions fixed -------------------------------------
+mesh=$data/holes3.obj
+cones=$data/holes3_Th_hat
+if "$bin" quantize "$mesh" --map "$mesh" --cones "$cones" --quads 1000 --optimize off -o "$tmp/igm.obj" \
+    --quiet 2>"$tmp/err" &&
+  "$bin" optimize "$mesh" --map "$tmp/igm.obj" --translations fixed -o "$tmp/igm.opt.obj" --quiet 2>"$tmp/err" &&
+  "$bin" extract "$mesh" "$tmp/igm.obj" -o "$tmp/q0.obj" --quiet 2>"$tmp/err" &&
+  "$bin" extract "$mesh" "$tmp/igm.opt.obj" -o "$tmp/q1.obj" --quiet 2>"$tmp/err"; then
+  if [ "$(grep -c '^f ' "$tmp/q0.obj")" = "$(grep -c '^f ' "$tmp/q1.obj")" ]; then ok; else bad "fixed: quad counts differ"; fi
+  if python3 "$shared/tools/check_quad.py" "$mesh" "$tmp/q1.obj" --cones "$cones" >"$tmp/ref.out" 2>&1; then ok; else
+    bad "fixed: check_quad: $(tail -1 "$tmp/ref.out")"
+  fi
+else
+  bad "fixed: $(tail -1 "$tmp/err")"
+fi
+
+# --- bad input: exit 1, a message, nothing written -----------------------------
+edit() {
+  python3 - "$1" "$2" "$3" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+exec(sys.argv[3])
+open(sys.argv[2], "w").write("\n".join(lines))
+PY
+}
+mesh=$data/eight.obj
+cones=$data/eight_Th_hat
+edit "$mesh" "$tmp/flip.obj" '
+i = next(k for k, l in enumerate(lines) if l.startswith("f "))
+c = lines[i].split()
+a, b = c[1].split("/"), c[2].split("/")
+c[1], c[2] = a[0] + "/" + b[1], b[0] + "/" + a[1]
+lines[i] = " ".join(c)'
+edit "$mesh" "$tmp/seam.obj" '
+from collections import defaultdict
+uses = defaultdict(set)
+for l in lines:
+    if l.startswith("f "):
+        for c in l.split()[1:]:
+            v, t = c.split("/")[:2]
+            uses[v].add(t)
+v = next(v for v, ts in uses.items() if len(ts) > 1)
+t = int(sorted(uses[v])[0])
+idx = [k for k, l in enumerate(lines) if l.startswith("vt ")][t - 1]
+u, w = lines[idx].split()[1:3]
+lines[idx] = "vt %r %s" % (float(u) + 1e-3, w)'
+edit "$mesh" "$tmp/novt.obj" '
+lines = [l for l in lines if not l.startswith("vt ")]
+lines = [("f " + " ".join(c.split("/")[0] for c in l.split()[1:])) if l.startswith("f ") else l for l in lines]'
+expect1() { # NAME MESH MAP NEEDLE
+  "$bin" optimize "$2" --map "$3" -o "$tmp/bad.obj" >"$tmp/bad.out" 2>"$tmp/bad.err"
+  local rc=$?
+  if [ $rc = 1 ] && grep -qi "$4" "$tmp/bad.err" && [ ! -e "$tmp/bad.obj" ]; then ok; else
+    bad "$1: rc $rc, $(cat "$tmp/bad.err")"
+  fi
+}
+expect1 flipped "$mesh" "$tmp/flip.obj" "flipped"
+expect1 seam "$mesh" "$tmp/seam.obj" "rotation\|angle sum\|flipped"
+expect1 no-vt "$mesh" "$tmp/novt.obj" "no texture coordinates"
+expect1 other-mesh "$data/knot1.obj" "$mesh" "not a map of the input mesh"
+
+# --- wrong command lines: exit 2 -----------------------------------------------
+expect2() {
+  "$bin" optimize "$@" >"$tmp/bad.out" 2>"$tmp/bad.err"
+  local rc=$?
+  if [ $rc = 2 ] && [ -s "$tmp/bad.err" ] && [ ! -e "$tmp/bad.obj" ]; then ok; else bad "usage $*: rc $rc"; fi
+}
+expect2 "$mesh" -o "$tmp/bad.obj"
+expect2 "$mesh" --map "$mesh" --translations sideways -o "$tmp/bad.obj"
+expect2 "$mesh" --map "$mesh" --iterations 0 -o "$tmp/bad.obj"
+expect2 "$mesh" --map "$mesh" -o "$mesh"
+expect2 "$mesh" --map "$mesh" -o "$tmp/bad.ply"
+
+echo "cli_optimize: $pass passed, $fail failed"
+[ $fail = 0 ]
