@@ -225,10 +225,71 @@ static sq_status check_pivots(const char *who, const cholmod_factor *l, const do
     return SQ_OK;
 }
 
+/* The lower triangle of the triplets as a CHOLMOD matrix (duplicates
+ * summed; CHOLMOD would otherwise transpose the upper entries and add them
+ * in), and the diagonal of A (caller-allocated, n). */
+static sq_status lower_matrix(const char *who, sq_spd *f, size_t nnz, const uint32_t *rows,
+                              const uint32_t *cols, const double *vals, double *diag,
+                              cholmod_sparse **out, sq_error *err)
+{
+    const size_t sx = f->xtype == CHOLMOD_COMPLEX ? 2 : 1;
+    cholmod_common *c = &f->common;
+    size_t lower = 0;
+    for (size_t k = 0; k < nnz; k++) lower += rows[k] >= cols[k];
+    memset(diag, 0, f->n * sizeof *diag);
+    *out = NULL;
+    cholmod_triplet *t = cholmod_allocate_triplet(f->n, f->n, lower, -1, f->xtype, c);
+    sq_status st = cholmod_check(who, "allocate_triplet", t != NULL, c, err);
+    if (st == SQ_OK) {
+        int *ti = t->i, *tj = t->j;
+        double *tx = t->x;
+        size_t m = 0;
+        for (size_t k = 0; k < nnz; k++) {
+            if (rows[k] < cols[k]) continue;
+            ti[m] = (int)rows[k];
+            tj[m] = (int)cols[k];
+            for (size_t q = 0; q < sx; q++) tx[sx * m + q] = vals[sx * k + q];
+            m++;
+            if (rows[k] == cols[k]) diag[rows[k]] += vals[sx * k]; /* real on a Hermitian diagonal */
+        }
+        assert(m == lower);
+        t->nnz = m;
+        *out = cholmod_triplet_to_sparse(t, m, c); /* sums duplicates */
+        st = cholmod_check(who, "triplet_to_sparse", *out != NULL, c, err);
+    }
+    cholmod_free_triplet(&t, c);
+    return st;
+}
+
+/* The numeric factorization of a into f->factor (analyzed), and the
+ * pivot check. */
+static sq_status numeric(const char *who, sq_spd *f, cholmod_sparse *a, const double *diag,
+                         sq_error *err)
+{
+    cholmod_common *c = &f->common;
+    sq_status st;
+    const int ok = cholmod_factorize(a, f->factor, c);
+    if (ok && c->status == CHOLMOD_NOT_POSDEF) {
+        /* minor is the failing column in the permuted order. */
+        const cholmod_factor *l = f->factor;
+        const size_t minor = l->minor;
+        const int *perm = l->Perm;
+        const long row = (perm && minor < f->n) ? (long)perm[minor] : (long)minor;
+        st = sq_error_set(err, SQ_ERR_SOLVER,
+                          "%s: matrix is not positive definite (Cholesky pivot %zu of "
+                          "%u is not positive, at row/column %ld)",
+                          who, minor + 1, f->n, row);
+    } else {
+        st = cholmod_check(who, "factorize", ok, c, err);
+    }
+    if (st == SQ_OK) st = check_pivots(who, f->factor, diag, err);
+    return st;
+}
+
 /* sq_spd_factor (xtype CHOLMOD_REAL: one value per triplet) and
  * sq_hpd_factor (CHOLMOD_COMPLEX: two, real and imaginary part). */
 static sq_status factor_x(const char *who, uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
-                          const double *vals, int xtype, sq_spd **out, sq_error *err)
+                          const double *vals, int xtype, int auto_super, sq_spd **out, sq_error *err)
 {
     const size_t sx = xtype == CHOLMOD_COMPLEX ? 2 : 1;
     if (out) *out = NULL;
@@ -244,58 +305,17 @@ static sq_status factor_x(const char *who, uint32_t n, size_t nnz, const uint32_
     }
     set_cholmod_options(&f->common);
     cholmod_common *c = &f->common;
-    if (sx * n < SPD_SIMPLICIAL_BELOW) c->supernodal = CHOLMOD_SIMPLICIAL;
-
-    /* Keep the lower triangle only: CHOLMOD would otherwise transpose the
-     * upper entries and add them in. */
-    size_t lower = 0;
-    for (size_t k = 0; k < nnz; k++) lower += rows[k] >= cols[k];
+    if (sx * n < SPD_SIMPLICIAL_BELOW && !auto_super) c->supernodal = CHOLMOD_SIMPLICIAL;
 
     cholmod_sparse *a = NULL;
-    double *diag = calloc(n, sizeof *diag); /* diagonal of A, duplicates summed */
-    cholmod_triplet *t = cholmod_allocate_triplet(n, n, lower, -1, xtype, c);
-    st = diag ? cholmod_check(who, "allocate_triplet", t != NULL, c, err)
+    double *diag = calloc(n, sizeof *diag);
+    st = diag ? lower_matrix(who, f, nnz, rows, cols, vals, diag, &a, err)
               : sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
-    if (st == SQ_OK) {
-        int *ti = t->i, *tj = t->j;
-        double *tx = t->x;
-        size_t m = 0;
-        for (size_t k = 0; k < nnz; k++) {
-            if (rows[k] < cols[k]) continue;
-            ti[m] = (int)rows[k];
-            tj[m] = (int)cols[k];
-            for (size_t q = 0; q < sx; q++) tx[sx * m + q] = vals[sx * k + q];
-            m++;
-            if (rows[k] == cols[k]) diag[rows[k]] += vals[sx * k]; /* real on a Hermitian diagonal */
-        }
-        assert(m == lower);
-        t->nnz = m;
-        a = cholmod_triplet_to_sparse(t, m, c); /* sums duplicates */
-        st = cholmod_check(who, "triplet_to_sparse", a != NULL, c, err);
-    }
-    cholmod_free_triplet(&t, c);
-
     if (st == SQ_OK) {
         f->factor = cholmod_analyze(a, c);
         st = cholmod_check(who, "analyze", f->factor != NULL, c, err);
     }
-    if (st == SQ_OK) {
-        const int ok = cholmod_factorize(a, f->factor, c);
-        if (ok && c->status == CHOLMOD_NOT_POSDEF) {
-            /* minor is the failing column in the permuted order. */
-            const cholmod_factor *l = f->factor;
-            const size_t minor = l->minor;
-            const int *perm = l->Perm;
-            const long row = (perm && minor < n) ? (long)perm[minor] : (long)minor;
-            st = sq_error_set(err, SQ_ERR_SOLVER,
-                              "%s: matrix is not positive definite (Cholesky pivot %zu of "
-                              "%u is not positive, at row/column %ld)",
-                              who, minor + 1, n, row);
-        } else {
-            st = cholmod_check(who, "factorize", ok, c, err);
-        }
-    }
-    if (st == SQ_OK) st = check_pivots(who, f->factor, diag, err);
+    if (st == SQ_OK) st = numeric(who, f, a, diag, err);
     cholmod_free_sparse(&a, c);
     free(diag);
 
@@ -307,16 +327,41 @@ static sq_status factor_x(const char *who, uint32_t n, size_t nnz, const uint32_
     return SQ_OK;
 }
 
+sq_status sq_spd_refactor(sq_spd *f, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                          const double *vals, sq_error *err)
+{
+    static const char who[] = "sq_spd_refactor";
+    if (!f || !f->factor) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: no factorization", who);
+    sq_spd *dummy = f;
+    sq_status st = check_triplets(who, f->n, nnz, rows, cols, vals, f->xtype == CHOLMOD_COMPLEX ? 2 : 1,
+                                  &dummy, err);
+    if (st != SQ_OK) return st;
+    cholmod_sparse *a = NULL;
+    double *diag = calloc(f->n, sizeof *diag);
+    st = diag ? lower_matrix(who, f, nnz, rows, cols, vals, diag, &a, err)
+              : sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
+    if (st == SQ_OK) st = numeric(who, f, a, diag, err);
+    cholmod_free_sparse(&a, &f->common);
+    free(diag);
+    return st;
+}
+
 sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
                         const double *vals, sq_spd **out, sq_error *err)
 {
-    return factor_x("sq_spd_factor", n, nnz, rows, cols, vals, CHOLMOD_REAL, out, err);
+    return factor_x("sq_spd_factor", n, nnz, rows, cols, vals, CHOLMOD_REAL, 0, out, err);
 }
 
 sq_status sq_hpd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
                         const double *vals, sq_spd **out, sq_error *err)
 {
-    return factor_x("sq_hpd_factor", n, nnz, rows, cols, vals, CHOLMOD_COMPLEX, out, err);
+    return factor_x("sq_hpd_factor", n, nnz, rows, cols, vals, CHOLMOD_COMPLEX, 0, out, err);
+}
+
+sq_status sq_spd_factor_auto(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                             const double *vals, sq_spd **out, sq_error *err)
+{
+    return factor_x("sq_spd_factor_auto", n, nnz, rows, cols, vals, CHOLMOD_REAL, 1, out, err);
 }
 
 sq_status sq_spd_solve(sq_spd *f, uint32_t nrhs, const double *b, double *x, sq_error *err)

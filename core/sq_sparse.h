@@ -21,6 +21,15 @@ typedef struct sq_lu sq_lu;     /* LU factorization (UMFPACK)         */
  * both: entries with row < col are ignored (the lower triangle is used). */
 sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
                         const double *vals, sq_spd **out, sq_error *err);
+/* The same, with CHOLMOD's choice between its simplicial and supernodal
+ * code (flops per entry of the factor) at every size, where sq_spd_factor
+ * takes the simplicial code below 60,000 unknowns (sq_sparse.c). For a
+ * matrix refactored many times (sq_spd_refactor) with more fill than a
+ * Laplacian's: the optimizer's Newton systems (2x2 blocks per vertex;
+ * fertility_tri's integer-grid map at 1K quads, 42K unknowns, 10 steps:
+ * 5.8 s simplicial, 3.3 to 4.4 s with the choice). */
+sq_status sq_spd_factor_auto(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                             const double *vals, sq_spd **out, sq_error *err);
 /* Hermitian positive definite complex matrix of size n: vals holds two
  * doubles per triplet (real, imaginary part); the lower triangle is used
  * (entries with row < col are ignored), the upper is its conjugate. The
@@ -29,6 +38,13 @@ sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint
  * squares problem would otherwise give (docs/solvers.md). */
 sq_status sq_hpd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
                         const double *vals, sq_spd **out, sq_error *err);
+/* A new matrix with the same nonzero pattern as the one f was made from
+ * (the same triplet positions; values may differ, also to zero): its
+ * numeric factorization, reusing f's ordering and symbolic analysis (on
+ * failure f must not be used for solves until a refactorization
+ * succeeds). */
+sq_status sq_spd_refactor(sq_spd *f, size_t nnz, const uint32_t *rows, const uint32_t *cols,
+                          const double *vals, sq_error *err);
 /* Solves A X = B for nrhs columns stored one after another (n each; with
  * sq_hpd_factor, n complex numbers each, interleaved real and imaginary
  * part). */

@@ -49,6 +49,8 @@ typedef struct opt_ctx {
     uint32_t *h_off;     /* nz + 1                                            */
     uint32_t *h_col;     /* sorted within a row                               */
     double *h_val;
+    uint32_t *h_row;     /* the row of every entry (for the solver)            */
+    sq_spd *fac;         /* the analyzed factorization, refactored per step    */
 } opt_ctx;
 
 /* Triangles far smaller than the mean (a refinement's slivers: 1e-19 of it
@@ -265,35 +267,32 @@ static void basis_linear(const sq_uv_basis *B, const double *d, double *out)
     }
 }
 
-/* One Newton direction: H_z d = -g_z. */
+/* One Newton direction: H_z d = -g_z. The first call analyzes the
+ * pattern (ordering, symbolic factorization); later calls only refactor. */
 static sq_status newton_direction(opt_ctx *X, const double *gz, double *d, sq_error *err)
 {
     uint32_t nz = X->B->nz, nnz = X->h_off[nz];
-    uint32_t *rows = malloc(((size_t)nnz + 1) * sizeof *rows);
+    if (!X->h_row) {
+        X->h_row = malloc(((size_t)nnz + 1) * sizeof *X->h_row);
+        if (!X->h_row) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Newton system)");
+        for (uint32_t i = 0; i < nz; i++)
+            for (uint32_t j = X->h_off[i]; j < X->h_off[i + 1]; j++) X->h_row[j] = i;
+    }
     double *rhs = malloc(((size_t)nz + 1) * sizeof *rhs);
-    if (!rows || !rhs) {
-        free(rows);
-        free(rhs);
-        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Newton system)");
-    }
+    if (!rhs) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Newton system)");
     double diag = 0;
-    for (uint32_t i = 0; i < nz; i++) {
-        for (uint32_t j = X->h_off[i]; j < X->h_off[i + 1]; j++) rows[j] = i;
-        diag += *h_entry(X, i, i);
-    }
+    for (uint32_t i = 0; i < nz; i++) diag += *h_entry(X, i, i);
     diag = nz ? diag / nz : 1.0;
     if (!(diag > 0)) diag = 1.0;
     for (uint32_t i = 0; i < nz; i++) rhs[i] = -gz[i];
     sq_status st = SQ_ERR_SOLVER;
     for (double mu = 1e-10; mu < 1e2 && st; mu *= 100) {
         for (uint32_t i = 0; i < nz; i++) *h_entry(X, i, i) += mu * diag;
-        sq_spd *fac = NULL;
-        st = sq_spd_factor(nz, nnz, rows, X->h_col, X->h_val, &fac, err);
-        if (!st) st = sq_spd_solve(fac, 1, rhs, d, err);
-        sq_spd_free(fac);
+        if (X->fac) st = sq_spd_refactor(X->fac, nnz, X->h_row, X->h_col, X->h_val, err);
+        else st = sq_spd_factor_auto(nz, nnz, X->h_row, X->h_col, X->h_val, &X->fac, err);
+        if (!st) st = sq_spd_solve(X->fac, 1, rhs, d, err);
         for (uint32_t i = 0; i < nz; i++) *h_entry(X, i, i) -= mu * diag;
     }
-    free(rows);
     free(rhs);
     return st;
 }
@@ -559,6 +558,8 @@ done:
     free(X.h_off);
     free(X.h_col);
     free(X.h_val);
+    free(X.h_row);
+    sq_spd_free(X.fac);
     sq_uv_basis_free(&B);
     rep->seconds = sq_now() - t0;
     return st;

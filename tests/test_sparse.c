@@ -164,6 +164,66 @@ static void check_solve(const triplets *t, uint32_t nrhs, int spd, matvec_fn mv,
 
 /* ---- SPD (CHOLMOD) -------------------------------------------------------- */
 
+/* sq_spd_factor_auto, then sq_spd_refactor with new values on the same
+ * pattern: both solve like a fresh factorization; an indefinite refactor
+ * fails, and a later good one works again. Sizes on both sides of the
+ * simplicial/supernodal switch. */
+static void refactor_case(uint32_t side)
+{
+    triplets a, b;
+    grid_laplacian(&a, side, 0.5);
+    grid_laplacian(&b, side, 2.0);
+    for (size_t k = 0; k < b.count; k++) b.vals[k] *= 1.0 + 0.3 * sin((double)k); /* same pattern */
+    for (uint32_t v = 0; v < b.n; v++) trip_add(&b, v, v, 0.0);
+    for (uint32_t v = 0; v < a.n; v++) trip_add(&a, v, v, 0.0);
+    const size_t n = a.n;
+    double *xs = malloc(n * sizeof *xs), *rhs = malloc(n * sizeof *rhs), *x = malloc(n * sizeof *x);
+    assert_true(xs && rhs && x);
+    for (size_t i = 0; i < n; i++) xs[i] = known(i, 0);
+    sq_error err;
+    sq_spd *f = NULL;
+    assert_int_equal(sq_spd_factor_auto(a.n, a.count, a.rows, a.cols, a.vals, &f, &err), SQ_OK);
+    matvec_lower(&a, xs, rhs);
+    assert_int_equal(sq_spd_solve(f, 1, rhs, x, &err), SQ_OK);
+    assert_true(relative_diff(x, xs, n) < 1e-9);
+    /* b may not be SPD after the perturbation: only compare when it is */
+    sq_spd *g = NULL;
+    if (sq_spd_factor(b.n, b.count, b.rows, b.cols, b.vals, &g, &err) == SQ_OK) {
+        assert_int_equal(sq_spd_refactor(f, b.count, b.rows, b.cols, b.vals, &err), SQ_OK);
+        matvec_lower(&b, xs, rhs);
+        assert_int_equal(sq_spd_solve(f, 1, rhs, x, &err), SQ_OK);
+        assert_true(relative_diff(x, xs, n) < 1e-9);
+        sq_spd_free(g);
+    }
+    /* indefinite values on the same pattern: refused */
+    double *neg = malloc(a.count * sizeof *neg);
+    assert_non_null(neg);
+    for (size_t k = 0; k < a.count; k++) neg[k] = -a.vals[k];
+    assert_int_equal(sq_spd_refactor(f, a.count, a.rows, a.cols, neg, &err), SQ_ERR_SOLVER);
+    assert_non_null(strstr(err.msg, "not positive definite"));
+    /* and a good one again */
+    assert_int_equal(sq_spd_refactor(f, a.count, a.rows, a.cols, a.vals, &err), SQ_OK);
+    matvec_lower(&a, xs, rhs);
+    assert_int_equal(sq_spd_solve(f, 1, rhs, x, &err), SQ_OK);
+    assert_true(relative_diff(x, xs, n) < 1e-9);
+    assert_int_equal(sq_spd_refactor(NULL, a.count, a.rows, a.cols, a.vals, &err), SQ_ERR_ARGUMENT);
+    sq_spd_free(f);
+    free(neg);
+    free(xs);
+    free(rhs);
+    free(x);
+    trip_free(&a);
+    trip_free(&b);
+}
+
+static void test_spd_refactor(void **state)
+{
+    (void)state;
+    refactor_case(20);  /* 400 unknowns: simplicial */
+    refactor_case(150); /* 22,500: CHOLMOD chooses */
+}
+
+
 static void test_spd_grid_laplacian(void **state)
 {
     (void)state;
@@ -751,6 +811,7 @@ int main(void)
         cmocka_unit_test(test_duplicates_summed),
         cmocka_unit_test(test_spd_rejects_indefinite),
         cmocka_unit_test(test_spd_rejects_roundoff_pivot),
+        cmocka_unit_test(test_spd_refactor),
         cmocka_unit_test(test_hpd_magnetic_laplacian),
         cmocka_unit_test(test_hpd_rejects),
         cmocka_unit_test(test_lu_nonsymmetric),
