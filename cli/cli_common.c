@@ -1,5 +1,7 @@
 #include "cli_common.h"
 
+#include <math.h>
+
 #include <string.h>
 
 #include "sq_cones.h"
@@ -64,6 +66,12 @@ void sq_json_open_map_report(sq_status st, const char *mesh, const char *map, co
     sq_json_string(stdout, map);
     printf(",\n  \"output\": ");
     sq_json_string(stdout, out);
+}
+
+void sq_json_double(FILE *f, double x)
+{
+    if (isfinite(x)) fprintf(f, "%.17g", x);
+    else fputs("null", f);
 }
 
 void sq_cli_name_file(sq_error *err, const char *path)

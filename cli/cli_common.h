@@ -43,6 +43,9 @@ void sq_json_open_map_report(sq_status st, const char *mesh, const char *map, co
  * (the library names elements; the command names the file). */
 void sq_cli_name_file(sq_error *err, const char *path);
 
+/* Writes x as a JSON number (%.17g), or null if it is not finite. */
+void sq_json_double(FILE *f, double x);
+
 /* Writes s as a JSON string literal (with quotes) to f. */
 void sq_json_string(FILE *f, const char *s);
 

@@ -181,13 +181,19 @@ int sq_cmd_optimize(int argc, char **argv)
         if (M.mesh.nv)
             printf(",\n  \"map_vertices\": %u, \"map_faces\": %u, \"seam_edges\": %u, \"cones\": %u",
                    M.mesh.nv, M.mesh.nf, mrep.seam_edges, mrep.cones);
-        if (stage[0] == 'w' || !st)
-            printf(",\n  \"unknowns\": %u, \"iterations\": %u, \"changed\": %s,\n  \"energy_before\": "
-                   "%.17g, \"energy_after\": %.17g, \"max_energy_before\": %.17g, "
-                   "\"max_energy_after\": %.17g,\n  \"stopped\": ",
-                   rep.unknowns, rep.iterations, rep.changed ? "true" : "false", rep.energy_before,
-                   rep.energy_after, rep.max_energy_before, rep.max_energy_after);
-        if (stage[0] == 'w' || !st) sq_json_string(stdout, rep.why);
+        if (stage[0] == 'w' || !st) {
+            printf(",\n  \"unknowns\": %u, \"held_triangles\": %u, \"iterations\": %u, \"changed\": %s,\n  \"energy_before\": ",
+                   rep.unknowns, rep.held_triangles, rep.iterations, rep.changed ? "true" : "false");
+            sq_json_double(stdout, rep.energy_before);
+            printf(", \"energy_after\": ");
+            sq_json_double(stdout, rep.energy_after);
+            printf(", \"max_energy_before\": ");
+            sq_json_double(stdout, rep.max_energy_before);
+            printf(", \"max_energy_after\": ");
+            sq_json_double(stdout, rep.max_energy_after);
+            printf(",\n  \"stopped\": ");
+            sq_json_string(stdout, rep.why);
+        }
         printf(",\n  \"time_s\": {\"read\": %.6f, \"basis\": %.6f, \"solve\": %.6f, \"optimize\": %.6f, "
                "\"write\": %.6f, \"total\": %.6f}",
                t_read, rep.seconds_basis, rep.seconds_solve, rep.seconds, t_write, t_total);
@@ -204,6 +210,9 @@ int sq_cmd_optimize(int argc, char **argv)
         printf("optimizer     %u unknowns (translations %s), %u iterations: %s%s\n", rep.unknowns,
                opt.basis == SQ_OPTIMIZE_FIXED_TRANSITIONS ? "fixed" : "free", rep.iterations, rep.why,
                rep.changed ? "" : "; the map is unchanged");
+        if (rep.held_triangles)
+            printf("held          %u triangles too distorted or too thin to move (kept as they are)\n",
+                   rep.held_triangles);
         printf("verified      every UV triangle positive (exact); every seam exact, with the input's "
                "rotations; the cones' angles kept\n");
         printf("time          read %.3f s, optimize %.3f s (solves %.3f s), write %.3f s; total %.3f s\n",

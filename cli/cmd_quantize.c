@@ -153,13 +153,17 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
                "\"igm_vertices\": %u, \"igm_faces\": %u",
                s->nodes, s->arcs, s->faces, s->split_vertices, s->split_triangles, s->fallback_faces,
                s->quads, s->min_quads, r->igm_nv, r->igm_nf);
-    if (r->done && r->optimize)
-        printf(",\n  \"optimize\": {\"iterations\": %u, \"changed\": %s, \"energy_before\": %.17g, "
-               "\"energy_after\": %.17g, \"max_energy_before\": %.17g, \"max_energy_after\": %.17g, "
-               "\"seconds\": %.6f, \"stopped\": ",
-               r->opt.iterations, r->opt.changed ? "true" : "false", r->opt.energy_before,
-               r->opt.energy_after, r->opt.max_energy_before, r->opt.max_energy_after, r->opt.seconds);
     if (r->done && r->optimize) {
+        printf(",\n  \"optimize\": {\"iterations\": %u, \"changed\": %s, \"energy_before\": ",
+               r->opt.iterations, r->opt.changed ? "true" : "false");
+        sq_json_double(stdout, r->opt.energy_before);
+        printf(", \"energy_after\": ");
+        sq_json_double(stdout, r->opt.energy_after);
+        printf(", \"max_energy_before\": ");
+        sq_json_double(stdout, r->opt.max_energy_before);
+        printf(", \"max_energy_after\": ");
+        sq_json_double(stdout, r->opt.max_energy_after);
+        printf(", \"seconds\": %.6f, \"stopped\": ", r->opt.seconds);
         sq_json_string(stdout, r->opt.why);
         printf("}");
     }

@@ -28,6 +28,7 @@
  * entries per unknown pair), the factor, and three copies of the corners. */
 #include "sq_optimize.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,6 +51,7 @@ typedef struct opt_ctx {
     uint32_t *h_col;     /* sorted within a row                               */
     double *h_val;
     uint32_t *h_row;     /* the row of every entry (for the solver)            */
+    uint8_t *held;       /* nz or NULL: unknowns kept at their value           */
     sq_spd *fac;         /* the analyzed factorization, refactored per step    */
 } opt_ctx;
 
@@ -64,6 +66,19 @@ typedef struct opt_ctx {
  * the quads 9.06, 8.94, 8.92, 11.66); at 20K 5.61, 4.20, 4.25, 4.24. */
 #define WEIGHT_FLOOR 1e-12
 
+/* See eval_fixed_exact: sides shorter than this many grid steps are held. */
+#define TINY_SIDE 1048576.0
+
+/* Triangles whose energy is above this at the start (singular values 1e6
+ * apart, or not positive in doubles) are held (see sq_optimize_map): Newton
+ * raises such a triangle's determinant by a bounded factor per step, and
+ * until then its barrier swamps every other triangle's progress in the sum
+ * (param's integer-grid maps start at mean energies of 1e25 to 1e94;
+ * published maps' integer-grid maps are unchanged by the hold at 1e12:
+ * helmet, homer, fertility_tri bit for bit in quality, femur within 0.2
+ * degrees; 1e8 cost helmet 1.7 degrees at 1K quads). */
+#define PSI_HOLD 1e12
+
 static void face_corners(const sq_mesh *m, uint32_t f, uint32_t hc[3])
 {
     hc[0] = m->f_he[f];
@@ -77,6 +92,17 @@ static void face_uv(const sq_mesh *m, const double *he_uv, uint32_t f, double uv
     face_corners(m, f, hc);
     for (int c = 0; c < 3; c++)
         uv[2 * c] = he_uv[2 * (size_t)hc[c]], uv[2 * c + 1] = he_uv[2 * (size_t)hc[c] + 1];
+}
+
+/* Holds every unknown the face's corners depend on. */
+static void hold_face(opt_ctx *X, uint32_t f)
+{
+    uint32_t hc[3];
+    face_corners(X->m, f, hc);
+    for (int k = 0; k < 6; k++) {
+        size_t r = 2 * (size_t)hc[k / 2] + k % 2;
+        for (uint32_t j = X->B->row_off[r]; j < X->B->row_off[r + 1]; j++) X->held[X->B->col[j]] = 1;
+    }
 }
 
 /* Mean energy of the corners he_uv (INFINITY if a triangle is not positive
@@ -285,6 +311,15 @@ static sq_status newton_direction(opt_ctx *X, const double *gz, double *d, sq_er
     diag = nz ? diag / nz : 1.0;
     if (!(diag > 0)) diag = 1.0;
     for (uint32_t i = 0; i < nz; i++) rhs[i] = -gz[i];
+    if (X->held) {
+        /* a held unknown: its row and column become the identity's, its
+         * right-hand side 0, so its step is 0 */
+        for (uint32_t i = 0; i < nz; i++)
+            for (uint32_t j = X->h_off[i]; j < X->h_off[i + 1]; j++)
+                if (X->held[i] || X->held[X->h_col[j]]) X->h_val[j] = X->h_col[j] == i ? diag : 0.0;
+        for (uint32_t i = 0; i < nz; i++)
+            if (X->held[i]) rhs[i] = 0;
+    }
     sq_status st = SQ_ERR_SOLVER;
     for (double mu = 1e-10; mu < 1e2 && st; mu *= 100) {
         for (uint32_t i = 0; i < nz; i++) *h_entry(X, i, i) += mu * diag;
@@ -366,6 +401,58 @@ static sq_status install(sq_map *M, const double *he_uv, int fixed, unsigned che
     return st;
 }
 
+/* Fixed transitions, exactly. The grid h: 2^-50 of the largest coordinate
+ * or translation (with a factor 4 of room for the optimization to grow
+ * the map), so every sum of two values on it is exact; 0 if a translation
+ * is not on it (the caller then snaps the map instead). */
+static double fixed_grid(const sq_map *M)
+{
+    const sq_mesh *m = &M->mesh;
+    double big = 0;
+    for (size_t k = 0; k < 2 * (size_t)m->nh; k++)
+        big = fmax(big, fmax(fabs(M->he_uv[k]), fabs(M->he_t[k])));
+    if (!(big > 0) || !isfinite(big)) return 0;
+    double h = ldexp(1.0, ilogb(2 * big) + 1 - 53);
+    for (size_t k = 0; k < 2 * (size_t)m->nh; k++)
+        if (nearbyint(M->he_t[k] / h) * h != M->he_t[k]) return 0;
+    return h;
+}
+
+/* The corners for the unknowns z, exactly seamless: a vertex whose
+ * unknowns equal the input's keeps its corners bit for bit; a moved
+ * vertex's first corner takes its point rounded to the grid h, and its
+ * other corners follow around it by the transitions (sq_map_apply, exact
+ * on the grid). No snapping of the whole map: the triangles of a
+ * refinement far below any global grid (param's maps) keep their bits.
+ * Returns 0 if a sum was not exact (a point outside the grid's range). */
+static int eval_fixed_exact(const sq_map *M, const sq_uv_basis *B, const double *z, double h,
+                            double *out)
+{
+    const sq_mesh *m = &M->mesh;
+    memcpy(out, M->he_uv, 2 * (size_t)m->nh * sizeof *out);
+    for (uint32_t v = 0; v < m->nv; v++) {
+        uint32_t h0 = m->v_he[v];
+        size_t r = 2 * (size_t)h0;
+        if (B->row_off[r + 1] == B->row_off[r]) continue; /* a cone: fixed */
+        uint32_t u = B->col[B->row_off[r]];
+        assert(B->val[B->row_off[r]] == 1.0 && B->col[B->row_off[r + 1]] == u + 1);
+        if (z[u] == B->z0[u] && z[u + 1] == B->z0[u + 1]) continue;
+        double p[2] = {nearbyint(z[u] / h) * h, nearbyint(z[u + 1] / h) * h};
+        uint32_t k = h0;
+        do {
+            out[2 * (size_t)k] = p[0];
+            out[2 * (size_t)k + 1] = p[1];
+            uint32_t e = sq_map_prev(m, k);
+            double q[2];
+            if (!sq_map_apply(M->he_rot[e], M->he_t + 2 * (size_t)e, p, q)) return 0;
+            p[0] = q[0], p[1] = q[1];
+            k = sq_map_rotate_out(m, k);
+        } while (k != h0);
+        if (p[0] != out[2 * (size_t)h0] || p[1] != out[2 * (size_t)h0 + 1]) return 0;
+    }
+    return 1;
+}
+
 sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize_report *rep,
                           sq_error *err)
 {
@@ -443,17 +530,54 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
     }
     X.weight = total > 0 ? 1.0 / total : 1.0;
 
+    /* with fixed transitions on a grid, every iterate is evaluated exactly
+     * (eval_fixed_exact): what the line search's exact test accepts is
+     * what is returned */
+    double hgrid = fixed ? fixed_grid(M) : 0;
     sq_uv_basis_eval(&B, z, uv);
-    double e = energy(&X, uv, NULL);
-    sq_optimize_energy(M, &rep->energy_before, &rep->max_energy_before);
-    rep->energy_after = rep->energy_before;
-    rep->max_energy_after = rep->max_energy_before;
-    if (!isfinite(e)) {
-        /* the basis reproduces the map only up to rounding: a triangle of
-         * area near the rounding is then not positive in doubles */
-        snprintf(rep->why, sizeof rep->why,
-                 "a triangle is degenerate in doubles at the start (energy not finite)");
+    if (hgrid > 0) memcpy(uv, M->he_uv, nc * sizeof *uv);
+    X.held = calloc((size_t)B.nz + 1, 1);
+    if (!X.held) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (optimizer)");
         goto done;
+    }
+    if (hgrid > 0) {
+        /* a triangle with a side below TINY_SIDE grid steps would change
+         * shape when its corners round to the grid: it is held */
+        for (uint32_t f = 0; f < m->nf; f++) {
+            double a6[6];
+            face_uv(m, uv, f, a6);
+            double l = fmin(hypot(a6[2] - a6[0], a6[3] - a6[1]),
+                            fmin(hypot(a6[4] - a6[2], a6[5] - a6[3]), hypot(a6[0] - a6[4], a6[1] - a6[5])));
+            if (l >= TINY_SIDE * hgrid) continue;
+            rep->held_triangles++;
+            hold_face(&X, f);
+        }
+    }
+    double e = energy(&X, uv, &rep->max_energy_before);
+    rep->energy_before = rep->energy_after = e;
+    rep->max_energy_after = rep->max_energy_before;
+    if (!isfinite(e) || !(rep->max_energy_before <= PSI_HOLD)) {
+        /* Triangles above PSI_HOLD, or not positive in doubles (exactly
+         * positive, but thinner than rounding: param's maps have them), are
+         * held where they are: every unknown their corners depend on is
+         * frozen, so their corners keep their bits and they stay positive;
+         * they leave the energy, the rest moves. */
+        for (uint32_t f = 0; f < m->nf; f++) {
+            double a6[6];
+            face_uv(m, uv, f, a6);
+            if (X.F[f].area == 0 || sq_sd_psi(&X.F[f], a6) <= PSI_HOLD) continue;
+            X.F[f].area = 0;
+            rep->held_triangles++;
+            hold_face(&X, f);
+        }
+        e = energy(&X, uv, &rep->max_energy_before);
+        rep->energy_before = rep->energy_after = e;
+        rep->max_energy_after = rep->max_energy_before;
+        if (!isfinite(e)) {
+            snprintf(rep->why, sizeof rep->why, "the energy is not finite at the start");
+            goto done;
+        }
     }
     if (B.nz == 0) {
         snprintf(rep->why, sizeof rep->why, "no free unknowns");
@@ -486,7 +610,11 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         int ok = 0;
         for (int ls = 0; ls < 60 && alpha > 0; ls++, alpha *= 0.5) {
             for (uint32_t i = 0; i < B.nz; i++) zt[i] = z[i] + alpha * d[i];
-            sq_uv_basis_eval(&B, zt, trial);
+            if (hgrid > 0) {
+                if (!eval_fixed_exact(M, &B, zt, hgrid, trial)) continue;
+            } else {
+                sq_uv_basis_eval(&B, zt, trial);
+            }
             e_new = energy(&X, trial, NULL);
             if (e_new <= e + 1e-4 * alpha * slope && all_positive(m, trial)) {
                 ok = 1;
@@ -520,7 +648,12 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         snprintf(rep->why, sizeof rep->why, "the energy did not decrease");
         goto done;
     }
-    st = install(M, uv, fixed, check_flags, &tmp);
+    if (hgrid > 0) {
+        memcpy(M->he_uv, uv, nc * sizeof *uv);
+        st = sq_map_check(M, check_flags, &tmp);
+    } else {
+        st = install(M, uv, fixed, check_flags, &tmp);
+    }
     if (st) {
         memcpy(M->he_uv, orig, nc * sizeof *orig);
         memcpy(M->he_t, orig_t, nc * sizeof *orig_t);
@@ -529,11 +662,10 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         st = SQ_OK;
         goto done;
     }
-    double after, after_max;
-    sq_optimize_energy(M, &after, &after_max);
+    double after_max = 0, after = energy(&X, M->he_uv, &after_max);
     if (!(after < rep->energy_before)) {
-        /* the weight floor changed the objective a little: never return a
-         * map that is worse by the energy the report states */
+        /* the snapped map (free translations) is not the iterate: never
+         * return a map that is worse by the energy the report states */
         memcpy(M->he_uv, orig, nc * sizeof *orig);
         memcpy(M->he_t, orig_t, nc * sizeof *orig_t);
         memcpy(M->he_rot, orig_rot, m->nh);
@@ -559,6 +691,7 @@ done:
     free(X.h_col);
     free(X.h_val);
     free(X.h_row);
+    free(X.held);
     sq_spd_free(X.fac);
     sq_uv_basis_free(&B);
     rep->seconds = sq_now() - t0;

@@ -54,7 +54,10 @@ typedef struct sq_optimize_options {
 typedef struct sq_optimize_report {
     uint32_t iterations;      /* accepted Newton steps                               */
     uint32_t unknowns;        /* real unknowns of the basis                          */
-    double energy_before;     /* area-weighted mean symmetric Dirichlet energy       */
+    uint32_t held_triangles;  /* not positive in doubles at the start: held in place */
+    double energy_before;     /* area-weighted mean symmetric Dirichlet energy over  */
+                              /* the triangles not held (a sliver weighs at least    */
+                              /* 1e-12 of the mean; sq_optimize.c)                   */
     double energy_after;
     double max_energy_before; /* of the worst triangle                               */
     double max_energy_after;

@@ -14,6 +14,9 @@
  *    independently of the report), and it extracts into a quad mesh with
  *    the same quad count;
  *  - optimizing the result again never makes it worse;
+ *  - param's map of eight quantized at 1K: its triangles thinner than
+ *    rounding are held, the rest optimized; still an integer-grid map with
+ *    the same transitions and quad count;
  *  - a map failing sq_map_check is refused. */
 #include <math.h>
 #include <setjmp.h>
@@ -23,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -32,6 +36,7 @@
 #include "sq_map.h"
 #include "sq_optimize.h"
 #include "sq_optimize_internal.h"
+#include "sq_param.h"
 #include "sq_predicates.h"
 #include "sq_quantize.h"
 #include "sq_uv_basis.h"
@@ -320,12 +325,70 @@ static void test_refuses_bad_map(void **state)
     unload(&md);
 }
 
+/* param's map of eight (exact, integer, a refinement with triangles far
+ * below rounding), quantized: the optimizer holds the triangles it cannot
+ * move, lowers the energy of the rest, and the result is an integer-grid
+ * map with the same transitions that extracts into as many quads. */
+static void test_param_igm(void **state)
+{
+    (void)state;
+    model md;
+    sq_error err;
+    load("eight", &md);
+    sq_param P;
+    sq_param_init(&P);
+    if (sq_param_build(&md.mesh, md.valence, NULL, &P, NULL, &err)) fail_msg("param: %s", err.msg);
+    char path[256];
+    snprintf(path, sizeof path, "/tmp/sq_test_optimize_%d.obj", (int)getpid());
+    if (sq_param_write_obj(path, &P, &err)) fail_msg("%s", err.msg);
+    sq_map M, igm;
+    if (sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT | SQ_MAP_REQUIRE_INTEGER, &M, NULL, &err))
+        fail_msg("param map read back: %s", err.msg);
+    unlink(path);
+    sq_param_free(&P);
+    sq_quantize_options qo = {1000, 0, SQ_TARGETS_MAP};
+    if (sq_quantize(&M, &qo, &igm, NULL, &err)) fail_msg("quantize: %s", err.msg);
+    const sq_mesh *m = &igm.mesh;
+    uint8_t *rot = malloc(m->nh);
+    double *t = malloc(2 * (size_t)m->nh * sizeof *t);
+    assert_non_null(rot);
+    assert_non_null(t);
+    memcpy(rot, igm.he_rot, m->nh);
+    memcpy(t, igm.he_t, 2 * (size_t)m->nh * sizeof *t);
+    sq_quad_mesh q0, q1;
+    assert_int_equal(sq_extract(&igm, &q0, NULL, &err), SQ_OK);
+    sq_optimize_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.basis = SQ_OPTIMIZE_FIXED_TRANSITIONS;
+    opt.max_iterations = 10;
+    sq_optimize_report rep;
+    if (sq_optimize_map(&igm, &opt, &rep, &err)) fail_msg("%s", err.msg);
+    print_message("param eight 1000: %u held, energy %.4g -> %.4g, %u iterations: %s\n", rep.held_triangles,
+                  rep.energy_before, rep.energy_after, rep.iterations, rep.why);
+    assert_true(rep.held_triangles > 0);
+    assert_int_equal(rep.changed, 1);
+    assert_true(rep.energy_after < rep.energy_before);
+    if (sq_map_check(&igm, SQ_MAP_REQUIRE_INTEGER, &err)) fail_msg("%s", err.msg);
+    assert_memory_equal(rot, igm.he_rot, m->nh);
+    for (uint32_t k = 0; k < 2 * m->nh; k++) assert_true(t[k] == igm.he_t[k]);
+    assert_int_equal(sq_extract(&igm, &q1, NULL, &err), SQ_OK);
+    assert_int_equal(q1.nq, q0.nq);
+    sq_quad_mesh_free(&q0);
+    sq_quad_mesh_free(&q1);
+    free(rot);
+    free(t);
+    sq_map_free(&igm);
+    sq_map_free(&M);
+    unload(&md);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_energy_isometry),  cmocka_unit_test(test_energy_derivatives),
         cmocka_unit_test(test_max_step),         cmocka_unit_test(test_basis_fixed),
         cmocka_unit_test(test_optimize_igm),     cmocka_unit_test(test_refuses_bad_map),
+        cmocka_unit_test(test_param_igm),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
