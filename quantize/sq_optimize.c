@@ -231,10 +231,12 @@ static sq_status build_pattern(opt_ctx *X, sq_error *err)
     }
     X->h_off[nz] = w;
     free(cnt);
-    X->h_col = realloc(fill, ((size_t)w + 1) * sizeof *fill);
-    if (!X->h_col) X->h_col = fill;
+    /* the unique entries into an array of their size (fill held repeats) */
+    X->h_col = malloc(((size_t)w + 1) * sizeof *X->h_col);
     X->h_val = malloc(((size_t)w + 1) * sizeof *X->h_val);
-    if (!X->h_val) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Hessian values)");
+    if (X->h_col) memcpy(X->h_col, fill, (size_t)w * sizeof *fill);
+    free(fill);
+    if (!X->h_col || !X->h_val) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Hessian pattern)");
     return SQ_OK;
 }
 
