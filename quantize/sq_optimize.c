@@ -2,25 +2,30 @@
  * seamless map, in a basis that keeps it seamless (sq_optimize.h).
  *
  * One iteration:
- *  1. the map's corners from the unknowns (he_uv = c + P z);
+ *  1. the map's corners from the unknowns (he_uv = c + P z; with fixed
+ *     transitions exactly seamless, eval_fixed_exact);
  *  2. every triangle's gradient and positive semidefinite Hessian
  *     (sq_optimize_energy.c), pulled back to z: g_z = P^T g, H_z = P^T H P,
  *     accumulated into a pattern built once;
- *  3. H_z d = -g_z by Cholesky (CHOLMOD), with a small multiple of the
- *     mean diagonal added so the system stays definite;
+ *  3. H_z d = -g_z by Cholesky (CHOLMOD: analyzed once, refactored per
+ *     step), with a small multiple of the mean diagonal added so the
+ *     system stays definite; held unknowns get d = 0;
  *  4. the step: at most 0.8 of the largest one that keeps every triangle
  *     positive, halved until the energy falls by the Armijo fraction
  *     1e-4 * alpha * g.d, and then accepted only if sq_orient2d (exact)
  *     finds every triangle positive.
- * The energy is a mean over the surface area, so its scale does not depend
- * on the mesh. It stops after max_iterations, or when an iteration lowers
- * the energy by less than tolerance (relative), or when no step passes.
+ * The energy is a mean over the surface area (slivers floored,
+ * WEIGHT_FLOOR; triangles above PSI_HOLD at the start held and left out),
+ * so its scale does not depend on the mesh. It stops after max_iterations,
+ * when a full step gains less than tolerance (relative), when three cut
+ * steps in a row do (stalled), or when no step passes.
  *
- * Afterwards the transitions are re-estimated from the corners (rotations
- * as before; translations kept exactly with fixed transitions), and the map
- * is snapped and checked exactly by the same code that reads maps
- * (sq_map_snap, sq_map_check). If that check fails the original map is
- * restored.
+ * Afterwards, with fixed transitions on a grid, the last iterate is the
+ * map (it is exactly seamless already); otherwise the translations are
+ * re-estimated from the corners (rotations as before) and the map is
+ * snapped by the code that reads maps (sq_map_snap). Either way
+ * sq_map_check decides; if it fails, or the energy did not fall, the
+ * original map is restored.
  *
  * Cost per iteration: one sparse Cholesky of the size of the unknowns
  * (about the vertex count times two) plus O(faces) work for each energy

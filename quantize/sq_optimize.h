@@ -17,10 +17,13 @@
  * decreases enough (Armijo), and accepted only if the exact orientation
  * test (sq_orient2d) finds every triangle positive.
  *
- * The result is snapped to a dyadic grid and checked exactly
- * (sq_map_check, with SQ_MAP_REQUIRE_INTEGER for an integer-grid map); if
- * that fails, or the energy did not decrease, the map is left unchanged
- * and the report says why. The map is never made invalid. */
+ * The result is exactly seamless (with fixed transitions every iterate is;
+ * with free translations it is snapped to a dyadic grid) and checked
+ * exactly (sq_map_check, with SQ_MAP_REQUIRE_INTEGER for an integer-grid
+ * map); if that fails, or the energy did not decrease, the map is left
+ * unchanged and the report says why. The map is never made invalid.
+ * Triangles too distorted or too thin to move are held where they are
+ * (rep->held_triangles). */
 #ifndef SQ_OPTIMIZE_H
 #define SQ_OPTIMIZE_H
 
