@@ -97,38 +97,10 @@ else
 fi
 
 # --- bad input: exit 1, a message, nothing written -----------------------------
-edit() {
-  python3 - "$1" "$2" "$3" <<'PY'
-import sys
-lines = open(sys.argv[1]).read().split("\n")
-exec(sys.argv[3])
-open(sys.argv[2], "w").write("\n".join(lines))
-PY
-}
 mesh=$data/eight.obj
 cones=$data/eight_Th_hat
-edit "$mesh" "$tmp/flip.obj" '
-i = next(k for k, l in enumerate(lines) if l.startswith("f "))
-c = lines[i].split()
-a, b = c[1].split("/"), c[2].split("/")
-c[1], c[2] = a[0] + "/" + b[1], b[0] + "/" + a[1]
-lines[i] = " ".join(c)'
-edit "$mesh" "$tmp/seam.obj" '
-from collections import defaultdict
-uses = defaultdict(set)
-for l in lines:
-    if l.startswith("f "):
-        for c in l.split()[1:]:
-            v, t = c.split("/")[:2]
-            uses[v].add(t)
-v = next(v for v, ts in uses.items() if len(ts) > 1)
-t = int(sorted(uses[v])[0])
-idx = [k for k, l in enumerate(lines) if l.startswith("vt ")][t - 1]
-u, w = lines[idx].split()[1:3]
-lines[idx] = "vt %r %s" % (float(u) + 1e-3, w)'
-edit "$mesh" "$tmp/novt.obj" '
-lines = [l for l in lines if not l.startswith("vt ")]
-lines = [("f " + " ".join(c.split("/")[0] for c in l.split()[1:])) if l.startswith("f ") else l for l in lines]'
+. "$root/tests/bad_maps.sh"
+bad_maps "$mesh" "$tmp"
 expect1() { # NAME MESH MAP NEEDLE
   "$bin" optimize "$2" --map "$3" -o "$tmp/bad.obj" >"$tmp/bad.out" 2>"$tmp/bad.err"
   local rc=$?
