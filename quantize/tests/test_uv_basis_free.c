@@ -44,6 +44,7 @@
 #include "sq_map.h"
 #include "sq_quantize.h"
 #include "sq_sparse.h"
+#include "sq_test_soup.h"
 #include "sq_union_find.h"
 #include "sq_uv_basis.h"
 
@@ -311,53 +312,7 @@ static void read_mpz(const char *name, sq_map *M)
 
 /* ---- hand-made maps ------------------------------------------------------------ */
 
-typedef struct builder {
-    sq_soup s;
-    uint32_t cap_v, cap_uv, cap_f;
-} builder;
-
-static uint32_t b_vertex(builder *b, const double p[3])
-{
-    for (uint32_t v = 0; v < b->s.nv; v++)
-        if (!memcmp(b->s.pos + 3 * v, p, 3 * sizeof *p)) return v;
-    if (b->s.nv == b->cap_v) {
-        b->cap_v = b->cap_v ? 2 * b->cap_v : 64;
-        b->s.pos = realloc(b->s.pos, 3 * (size_t)b->cap_v * sizeof *b->s.pos);
-        assert_non_null(b->s.pos);
-    }
-    memcpy(b->s.pos + 3 * (size_t)b->s.nv, p, 3 * sizeof *p);
-    return b->s.nv++;
-}
-
-static uint32_t b_uv(builder *b, const double q[2])
-{
-    for (uint32_t i = 0; i < b->s.nuv; i++)
-        if (b->s.uv[2 * i] == q[0] && b->s.uv[2 * i + 1] == q[1]) return i;
-    if (b->s.nuv == b->cap_uv) {
-        b->cap_uv = b->cap_uv ? 2 * b->cap_uv : 64;
-        b->s.uv = realloc(b->s.uv, 2 * (size_t)b->cap_uv * sizeof *b->s.uv);
-        assert_non_null(b->s.uv);
-    }
-    memcpy(b->s.uv + 2 * (size_t)b->s.nuv, q, 2 * sizeof *q);
-    return b->s.nuv++;
-}
-
-static void b_tri(builder *b, const uint32_t v[3], const uint32_t t[3])
-{
-    if (b->s.nf == b->cap_f) {
-        b->cap_f = b->cap_f ? 2 * b->cap_f : 64;
-        b->s.face_idx = realloc(b->s.face_idx, 3 * (size_t)b->cap_f * sizeof *b->s.face_idx);
-        b->s.face_uv = realloc(b->s.face_uv, 3 * (size_t)b->cap_f * sizeof *b->s.face_uv);
-        b->s.face_off = realloc(b->s.face_off, ((size_t)b->cap_f + 1) * sizeof *b->s.face_off);
-        assert_non_null(b->s.face_idx), assert_non_null(b->s.face_uv), assert_non_null(b->s.face_off);
-    }
-    for (int c = 0; c < 3; c++) b->s.face_idx[3 * b->s.nf + c] = v[c], b->s.face_uv[3 * b->s.nf + c] = t[c];
-    b->s.face_off[b->s.nf] = 3 * b->s.nf;
-    b->s.nf++;
-    b->s.face_off[b->s.nf] = 3 * b->s.nf;
-}
-
-static void b_map(builder *b, sq_map *M)
+static void b_map(soup_builder *b, sq_map *M)
 {
     sq_error err;
     if (sq_map_from_soup(&b->s, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, M, NULL, &err))
@@ -368,7 +323,7 @@ static void b_map(builder *b, sq_map *M)
 /* flat torus: N x N unit squares, the plane modulo (N, 0) and (skew, N) */
 static void make_torus(int N, int skew, sq_map *M)
 {
-    builder b;
+    soup_builder b;
     memset(&b, 0, sizeof b);
     for (int a = 0; a < N; a++)
         for (int c = 0; c < N; c++) {
@@ -378,13 +333,13 @@ static void make_torus(int N, int skew, sq_map *M)
                 int i = ((ga[k] - (gb[k] == N ? skew : 0)) % N + N) % N, j = gb[k] % N;
                 double s = 2 * 3.14159265358979323846 * i / N, t = 2 * 3.14159265358979323846 * j / N;
                 double p[3] = {(2 + cos(t)) * cos(s), (2 + cos(t)) * sin(s), sin(t)}, uv[2] = {ga[k], gb[k]};
-                cv[k] = b_vertex(&b, p), cu[k] = b_uv(&b, uv);
+                cv[k] = sb_vertex(&b, p), cu[k] = sb_uv(&b, uv);
             }
             static const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
             for (int k = 0; k < 2; k++) {
                 uint32_t v[3] = {cv[tri[k][0]], cv[tri[k][1]], cv[tri[k][2]]};
                 uint32_t t[3] = {cu[tri[k][0]], cu[tri[k][1]], cu[tri[k][2]]};
-                b_tri(&b, v, t);
+                sb_tri(&b, v, t);
             }
         }
     b_map(&b, M);
@@ -400,7 +355,7 @@ static void make_cube(int n, sq_map *M)
         {1, 0, {0, 1, 0}, {1, 0, 0}, {0, -1, 0}}, {0, 1, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}},
         {2, 1, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {3, 1, {1, 1, 0}, {-1, 0, 0}, {0, 0, 1}},
     };
-    builder b;
+    soup_builder b;
     memset(&b, 0, sizeof b);
     for (int q = 0; q < 6; q++)
         for (int i = 0; i < n; i++)
@@ -411,13 +366,13 @@ static void make_cube(int n, sq_map *M)
                     double p[3], uv[2] = {n * face[q].nx + si[c], n * face[q].ny + sj[c]};
                     for (int k = 0; k < 3; k++)
                         p[k] = (double)(n * face[q].o[k] + si[c] * face[q].u[k] + sj[c] * face[q].v[k]) / n;
-                    cv[c] = b_vertex(&b, p), cu[c] = b_uv(&b, uv);
+                    cv[c] = sb_vertex(&b, p), cu[c] = sb_uv(&b, uv);
                 }
                 static const int ta[2][3] = {{0, 1, 2}, {0, 2, 3}};
                 for (int k = 0; k < 2; k++) {
                     uint32_t v[3] = {cv[ta[k][0]], cv[ta[k][1]], cv[ta[k][2]]};
                     uint32_t t[3] = {cu[ta[k][0]], cu[ta[k][1]], cu[ta[k][2]]};
-                    b_tri(&b, v, t);
+                    sb_tri(&b, v, t);
                 }
             }
     b_map(&b, M);
@@ -428,7 +383,7 @@ static void make_cube(int n, sq_map *M)
 static void rechart(const sq_map *M, sq_map *out)
 {
     const sq_mesh *m = &M->mesh;
-    builder b;
+    soup_builder b;
     memset(&b, 0, sizeof b);
     sq_soup *s = &b.s;
     s->nv = m->nv, s->nf = m->nf, s->nuv = 3 * m->nf;
