@@ -44,7 +44,16 @@ static void help(FILE *f)
             "  --translations KIND  free (default): the seams' translations may change\n"
             "                       (before quantization); fixed: they and the cones\n"
             "                       stay, so an integer-grid map stays one\n"
-            "  --iterations N       at most N Newton steps (default 100)\n"
+            "  --iterations N       at most N Newton steps (default 100; param's maps\n"
+            "                       gain up to a few hundred)\n"
+            "  --references K|off   progressive references (default 1000): while a\n"
+            "                       triangle's energy is above K, each triangle is\n"
+            "                       measured against a shape between its current one\n"
+            "                       and its surface shape, within K of the current one,\n"
+            "                       so the worst triangles do not cut every step short\n"
+            "                       (param's maps: helmet's mean conformal ratio 419 ->\n"
+            "                       9.8 in 200 steps, 256 without); off: the surface's\n"
+            "                       shapes throughout\n"
             "  --json               statistics on stdout\n"
             "  --quiet              no progress on stderr, no summary on stdout\n"
             "  -h, --help           this help\n"
@@ -83,7 +92,7 @@ int sq_cmd_optimize(int argc, char **argv)
             quiet = 1;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones") ||
                    !strcmp(a, "--map") || !strcmp(a, "--translations") ||
-                   !strcmp(a, "--iterations")) {
+                   !strcmp(a, "--iterations") || !strcmp(a, "--references")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "seamquad optimize: %s needs a value\n", a);
                 return SQ_EXIT_USAGE;
@@ -97,6 +106,17 @@ int sq_cmd_optimize(int argc, char **argv)
                 else {
                     fprintf(stderr, "seamquad optimize: --translations is free or fixed, not '%s'\n", v);
                     return SQ_EXIT_USAGE;
+                }
+            } else if (!strcmp(a, "--references")) {
+                char *end = NULL;
+                double k = strtod(v, &end);
+                if (!strcmp(v, "off")) {
+                    opt.reference_bound = INFINITY;
+                } else if (!end || *end || end == v || !(k > 4) || !isfinite(k)) {
+                    fprintf(stderr, "seamquad optimize: --references is off or an energy bound above 4, not '%s'\n", v);
+                    return SQ_EXIT_USAGE;
+                } else {
+                    opt.reference_bound = k;
                 }
             } else if (!strcmp(a, "--iterations")) {
                 char *end = NULL;
@@ -182,8 +202,10 @@ int sq_cmd_optimize(int argc, char **argv)
             printf(",\n  \"map_vertices\": %u, \"map_faces\": %u, \"seam_edges\": %u, \"cones\": %u",
                    M.mesh.nv, M.mesh.nf, mrep.seam_edges, mrep.cones);
         if (stage[0] == 'w' || !st) {
-            printf(",\n  \"unknowns\": %u, \"held_triangles\": %u, \"iterations\": %u, \"changed\": %s,\n  \"energy_before\": ",
-                   rep.unknowns, rep.held_triangles, rep.iterations, rep.changed ? "true" : "false");
+            printf(",\n  \"unknowns\": %u, \"held_triangles\": %u, \"iterations\": %u, \"reference_iterations\": %u, "
+                   "\"changed\": %s,\n  \"energy_before\": ",
+                   rep.unknowns, rep.held_triangles, rep.iterations, rep.reference_iterations,
+                   rep.changed ? "true" : "false");
             sq_json_double(stdout, rep.energy_before);
             printf(", \"energy_after\": ");
             sq_json_double(stdout, rep.energy_after);
@@ -210,6 +232,11 @@ int sq_cmd_optimize(int argc, char **argv)
         printf("optimizer     %u unknowns (translations %s), %u iterations: %s%s\n", rep.unknowns,
                opt.basis == SQ_OPTIMIZE_FIXED_TRANSITIONS ? "fixed" : "free", rep.iterations, rep.why,
                rep.changed ? "" : "; the map is unchanged");
+        if (rep.reference_iterations)
+            printf("references    %u iterations against progressive references (a triangle's energy\n"
+                   "              bounded by %g against its reference)\n",
+                   rep.reference_iterations,
+                   opt.reference_bound > 0 ? opt.reference_bound : SQ_OPTIMIZE_REFERENCE_BOUND);
         if (rep.held_triangles)
             printf("held          %u triangles too distorted or too thin to move (kept as they are)\n",
                    rep.held_triangles);

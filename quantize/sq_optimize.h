@@ -44,11 +44,17 @@ enum {
     SQ_OPTIMIZE_FREE_TRANSLATIONS = 1
 };
 
+#define SQ_OPTIMIZE_REFERENCE_BOUND 1000.0
+
 typedef struct sq_optimize_options {
     int basis;                /* SQ_OPTIMIZE_FIXED_TRANSITIONS or _FREE_TRANSLATIONS */
     uint32_t max_iterations;  /* 0: 100                                              */
     double tolerance;         /* stop when an iteration lowers the energy by less    */
                               /* than this fraction; 0: 1e-4                         */
+    /* progressive references while a triangle's energy exceeds this bound
+     * (sq_optimize.c, PROG_PATIENCE): 0 gives SQ_OPTIMIZE_REFERENCE_BOUND;
+     * INFINITY (or any value <= 4) turns them off */
+    double reference_bound;
     /* called after every iteration (may be NULL): a progress hook */
     void (*progress)(void *user, uint32_t iteration, double energy, double step);
     void *user;
@@ -58,6 +64,8 @@ typedef struct sq_optimize_report {
     uint32_t iterations;      /* accepted Newton steps                               */
     uint32_t unknowns;        /* real unknowns of the basis                          */
     uint32_t held_triangles;  /* not positive in doubles at the start: held in place */
+    uint32_t reference_iterations; /* of the iterations, those against progressive   */
+                              /* references                                         */
     double energy_before;     /* area-weighted mean symmetric Dirichlet energy over  */
                               /* the triangles not held (a sliver weighs at least    */
                               /* 1e-12 of the mean; sq_optimize.c)                   */

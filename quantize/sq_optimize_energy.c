@@ -158,6 +158,57 @@ double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, d
     return f * (1.0 + id2);
 }
 
+/* t in [0, 1] with 2 cosh(2 t l1) + 2 cosh(2 t l2) = K (the energy of the
+ * map over the reference, below), by bisection: the function rises with t */
+static double reference_t(double l1, double l2, double K)
+{
+    if (2 * cosh(2 * l1) + 2 * cosh(2 * l2) <= K) return 1.0;
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 40; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (2 * cosh(2 * mid * l1) + 2 * cosh(2 * mid * l2) <= K) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+
+double sq_sd_reference(const sq_sd_face *F, const double uv[6], double K, sq_sd_face *R)
+{
+    *R = *F;
+    if (F->area == 0) return 1.0;
+    double J[4];
+    jacobian(F, uv, J);
+    double det = J[0] * J[3] - J[1] * J[2];
+    if (!(det > 0)) return 1.0;
+    /* J = Rot(phi) diag(s1, s2) Rot(theta) (closed-form 2x2 SVD; s2 from
+     * the determinant, which keeps its relative precision when s2 << s1) */
+    double e = 0.5 * (J[0] + J[3]), f = 0.5 * (J[0] - J[3]);
+    double g = 0.5 * (J[2] + J[1]), h = 0.5 * (J[2] - J[1]);
+    double s1 = hypot(e, h) + hypot(f, g), s2 = det / s1;
+    double a1 = atan2(g, f), a2 = atan2(h, e);
+    double theta = 0.5 * (a2 - a1), phi = 0.5 * (a2 + a1);
+    double l1 = log(s1), l2 = log(s2);
+    if (!isfinite(l1) || !isfinite(l2)) return 1.0;
+    double t = reference_t(l1, l2, K);
+    if (t >= 1.0) return 1.0;
+    /* the reference's Jacobian from the surface's frame: Rot(phi)
+     * diag(r1, r2) Rot(theta), r = s^(1 - t); G_ref = G Rinv with
+     * Rinv = Rot(-theta) diag(1/r1, 1/r2) Rot(-phi) */
+    double ir1 = exp(-(1 - t) * l1), ir2 = exp(-(1 - t) * l2);
+    double ct = cos(theta), st = sin(theta), cp = cos(phi), sp = sin(phi);
+    /* Rot(-theta) = [[ct, st], [-st, ct]], Rot(-phi) = [[cp, sp], [-sp, cp]] */
+    double M[2][2] = {{ct * ir1, st * ir2}, {-st * ir1, ct * ir2}};
+    double Ri[2][2] = {{M[0][0] * cp - M[0][1] * sp, M[0][0] * sp + M[0][1] * cp},
+                       {M[1][0] * cp - M[1][1] * sp, M[1][0] * sp + M[1][1] * cp}};
+    for (int c = 0; c < 3; c++)
+        for (int b = 0; b < 2; b++) R->G[c][b] = F->G[c][0] * Ri[0][b] + F->G[c][1] * Ri[1][b];
+    if (!isfinite(R->G[0][0] + R->G[0][1] + R->G[1][0] + R->G[1][1] + R->G[2][0] + R->G[2][1])) {
+        *R = *F;
+        return 1.0;
+    }
+    return t;
+}
+
 double sq_sd_max_step(const double uv[6], const double duv[6])
 {
     double u1 = uv[2] - uv[0], v1 = uv[3] - uv[1], u2 = uv[4] - uv[0], v2 = uv[5] - uv[1];

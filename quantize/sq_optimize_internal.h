@@ -22,6 +22,14 @@ double sq_sd_psi(const sq_sd_face *F, const double uv[6]);
 double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, double g[6],
                        double H[36]);
 
+/* The progressive reference of F at the corners uv (Liu et al. 2018,
+ * "Progressive Parameterizations"): with J = U diag(s1, s2) V^T the map's
+ * Jacobian, the triangle whose Jacobian from the surface is
+ * U diag(s1^(1-t), s2^(1-t)) V^T, t in [0, 1] the largest for which the map's
+ * energy over it, sum s_i^(2t) + s_i^(-2t), is at most K. t = 1 (returned)
+ * gives F itself; R keeps F's area. */
+double sq_sd_reference(const sq_sd_face *F, const double uv[6], double K, sq_sd_face *R);
+
 /* The smallest alpha > 0 at which the triangle uv + alpha duv degenerates
  * (INFINITY if none). */
 double sq_sd_max_step(const double uv[6], const double duv[6]);
