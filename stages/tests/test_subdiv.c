@@ -255,7 +255,13 @@ static void run_quads(const char *name, int isolation, int with_step)
 static void test_bunny(void **state)
 {
     (void)state;
+#ifdef __SANITIZE_ADDRESS__
+    /* OpenCASCADE's minute on the STEP file is not our code: the sanitizer
+     * build checks the STEP writer on the cube, the bunny's IGES here */
+    run_quads("bunny_quadriflow5k.obj", 3, 0);
+#else
     run_quads("bunny_quadriflow5k.obj", 3, 1);
+#endif
 }
 
 static void test_3holes(void **state)
