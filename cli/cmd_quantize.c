@@ -85,7 +85,6 @@ typedef struct report {
     const char *mesh_path, *map_path, *out_path, *cones_path, *svg_path;
     double quads, edge_length;
     int targets, optimize;
-    sq_optimize_report opt;
     uint32_t nv, nf, map_nv, map_nf, igm_nv, igm_nf;
     int64_t genus;
     sq_map_report map;
@@ -122,8 +121,8 @@ static void print_text(const report *r)
     if (r->optimize)
         printf("optimized     symmetric Dirichlet %.4g -> %.4g (worst triangle %.4g -> %.4g), %u "
                "iterations, %.3f s: %s\n",
-               r->opt.energy_before, r->opt.energy_after, r->opt.max_energy_before,
-               r->opt.max_energy_after, r->opt.iterations, r->opt.seconds, r->opt.why);
+               r->st.optimize.energy_before, r->st.optimize.energy_after, r->st.optimize.max_energy_before,
+               r->st.optimize.max_energy_after, r->st.optimize.iterations, r->st.optimize.seconds, r->st.optimize.why);
     printf("verified      every UV triangle positive (exact); every seam a rotation by k*90\n"
            "              degrees plus an integer translation, exactly; cones on integer points\n");
     printf("time          read %.3f s, map %.3f s, T-mesh %.3f s, split %.3f s, layout %.3f s, "
@@ -155,16 +154,16 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
                s->quads, s->min_quads, r->igm_nv, r->igm_nf);
     if (r->done && r->optimize) {
         printf(",\n  \"optimize\": {\"iterations\": %u, \"changed\": %s, \"energy_before\": ",
-               r->opt.iterations, r->opt.changed ? "true" : "false");
-        sq_json_double(stdout, r->opt.energy_before);
+               r->st.optimize.iterations, r->st.optimize.changed ? "true" : "false");
+        sq_json_double(stdout, r->st.optimize.energy_before);
         printf(", \"energy_after\": ");
-        sq_json_double(stdout, r->opt.energy_after);
+        sq_json_double(stdout, r->st.optimize.energy_after);
         printf(", \"max_energy_before\": ");
-        sq_json_double(stdout, r->opt.max_energy_before);
+        sq_json_double(stdout, r->st.optimize.max_energy_before);
         printf(", \"max_energy_after\": ");
-        sq_json_double(stdout, r->opt.max_energy_after);
-        printf(", \"seconds\": %.6f, \"stopped\": ", r->opt.seconds);
-        sq_json_string(stdout, r->opt.why);
+        sq_json_double(stdout, r->st.optimize.max_energy_after);
+        printf(", \"seconds\": %.6f, \"stopped\": ", r->st.optimize.seconds);
+        sq_json_string(stdout, r->st.optimize.why);
         printf("}");
     }
     printf(",\n  \"time_s\": {\"read\": %.6f, \"map\": %.6f, \"tmesh\": %.6f, \"split\": %.6f, "
@@ -308,21 +307,9 @@ int sq_cmd_quantize(int argc, char **argv)
     if (!st) {
         r.map_nv = M.mesh.nv, r.map_nf = M.mesh.nf;
         stage = "quantize";
-        sq_quantize_options opt = {have_quads ? r.quads : 0, have_len ? r.edge_length : 0, r.targets};
+        sq_quantize_options opt = {have_quads ? r.quads : 0, have_len ? r.edge_length : 0, r.targets,
+                                   r.optimize};
         st = sq_quantize(&M, &opt, &igm, &r.st, &err);
-    }
-    if (!st && r.optimize) {
-        stage = "optimize";
-        sq_optimize_options oo;
-        memset(&oo, 0, sizeof oo);
-        oo.basis = SQ_OPTIMIZE_FIXED_TRANSITIONS;
-        oo.max_iterations = 20; /* most of the quads' gain comes in the first steps */
-        oo.tolerance = 1e-3;
-        /* triangles far from their surface shape are held, not given
-         * progressive references: the quads' figures of bench/README.md
-         * are measured so */
-        oo.reference_bound = INFINITY;
-        st = sq_optimize_map(&igm, &oo, &r.opt, &err);
     }
     if (!st) {
         r.done = 1;

@@ -12,7 +12,12 @@
  *  4. every face re-embedded onto its integer rectangle (sq_patch_embed.h)
  *     and the result checked exactly as an integer-grid map: rotations by
  *     k x 90 degrees plus integer translations, positive triangles, cones on
- *     integer points (sq_quantize_embed.c).
+ *     integer points (sq_quantize_embed.c);
+ *  5. optionally (sq_quantize_options.optimize), the integer-grid map's
+ *     distortion lowered with its transitions and cones fixed
+ *     (sq_optimize.h: at most 20 iterations, tolerance 1e-3, triangles far
+ *     from their surface shape held): the same layout and quad count,
+ *     quads closer to squares.
  *
  * Guarantees: the result passes sq_map_check with SQ_MAP_REQUIRE_INTEGER,
  * or the call fails with the reason; every arc has length >= 1, so no two
@@ -25,6 +30,7 @@
 #include "sq_error.h"
 #include "sq_map.h"
 #include "sq_map_split.h"
+#include "sq_optimize.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -39,6 +45,7 @@ typedef struct sq_quantize_options {
     double quads;       /* requested quad count (> 0), or 0 to use:          */
     double edge_length; /* requested quad edge length on the surface (> 0)   */
     int targets;        /* SQ_TARGETS_SURFACE (default) or SQ_TARGETS_MAP     */
+    int optimize;       /* 1: step 5 (sq_quantize only, not _chords)         */
 } sq_quantize_options;
 
 typedef struct sq_quantize_stats {
@@ -49,6 +56,7 @@ typedef struct sq_quantize_stats {
     double quads;                     /* quads of the integer-grid map       */
     double min_quads;                 /* the fewest the T-mesh allows (for a */
                                       /* quad target; 0 otherwise)          */
+    sq_optimize_report optimize;      /* step 5 (when asked)                 */
     double seconds_tmesh, seconds_split, seconds_layout, seconds_lengths, seconds_embed;
     double seconds;
 } sq_quantize_stats;

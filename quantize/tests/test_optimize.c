@@ -159,7 +159,7 @@ static void quantized(const char *name, double quads, model *md, sq_map *igm)
     load(name, md);
     if (sq_map_from_soup(&md->soup, &md->mesh, md->valence, 1e-9, 0, &M, NULL, &err))
         fail_msg("%s: %s", name, err.msg);
-    sq_quantize_options qo = {quads, 0, SQ_TARGETS_MAP};
+    sq_quantize_options qo = {quads, 0, SQ_TARGETS_MAP, 0};
     if (sq_quantize(&M, &qo, igm, NULL, &err)) fail_msg("%s: %s", name, err.msg);
     sq_map_free(&M);
 }
@@ -352,7 +352,7 @@ static void test_param_igm(void **state)
         fail_msg("param map read back: %s", err.msg);
     unlink(path);
     sq_param_free(&P);
-    sq_quantize_options qo = {1000, 0, SQ_TARGETS_MAP};
+    sq_quantize_options qo = {1000, 0, SQ_TARGETS_MAP, 0};
     if (sq_quantize(&M, &qo, &igm, NULL, &err)) fail_msg("quantize: %s", err.msg);
     const sq_mesh *m = &igm.mesh;
     uint8_t *rot = malloc(m->nh);
