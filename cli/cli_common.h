@@ -29,6 +29,7 @@ int sq_cmd_subdiv(int argc, char **argv);
 int sq_cmd_quantize(int argc, char **argv);
 int sq_cmd_extract(int argc, char **argv);
 int sq_cmd_optimize(int argc, char **argv);
+int sq_cmd_remesh(int argc, char **argv);
 
 /* Writes the `"error": {"code", "stage", "message"}` member of a --json
  * report (no leading comma or newline) to stdout. */

@@ -20,7 +20,7 @@ static const subcommand commands[] = {
     {"extract", sq_cmd_extract, "the closed pure-quad mesh of an integer-grid map"},
     {"smooth", sq_cmd_smooth, "smooth a quad mesh on the input surface with Ceres"},
     {"subdiv", sq_cmd_subdiv, "Catmull-Clark limit surface; STEP and IGES B-spline export"},
-    {"remesh", NULL, "the whole pipeline: triangle mesh in, quad mesh out (planned)"},
+    {"remesh", sq_cmd_remesh, "the whole pipeline: triangle mesh in, quad mesh out"},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 

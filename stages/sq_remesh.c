@@ -1,0 +1,208 @@
+/* seamquad: the pipeline from a closed triangle mesh to a quad mesh
+ * (sq_remesh.h; docs/remesh.md).
+ *
+ * Each stage's result is checked before the next starts: param verifies its
+ * own map exactly, stage 3 re-checks it as an sq_map, the optimizer and the
+ * quantizer return maps that pass sq_map_check (the integer-grid map with
+ * SQ_MAP_REQUIRE_INTEGER), and the extraction builds its mesh only from a
+ * valid integer-grid map. What no stage checks is a quad folded in 3D (its
+ * corners lie on the surface but the quad turns over it): the untangling
+ * step relaxes such quads and any left fail the run.
+ *
+ * Cost: dominated by the optimizer (stage 4: one sparse Cholesky per
+ * iteration on about twice the vertices of param's refinement) and by
+ * param on large cone sets; memory by param's refinement. */
+#include "sq_remesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sq_clock.h"
+#include "sq_cones.h"
+
+/* The share of the whole run each stage is given in the progress report
+ * (measured proportions on the mpz models at 5K quads, rounded). */
+#define SHARE_CONES 0.03
+#define SHARE_PARAM 0.17
+#define SHARE_OPTIMIZE 0.60
+#define SHARE_QUANTIZE 0.15
+
+typedef struct progress_ctx {
+    const sq_remesh_options *opt;
+    const char *stage;
+    double base, share;
+    double done;        /* the largest fraction reported: never goes back */
+    uint32_t iterations;
+} progress_ctx;
+
+/* Reports the stage's fraction as a fraction of the whole run; a stage whose
+ * own progress goes back (param's, between its attempts and steps) does not
+ * move the whole run's back. */
+static void report(progress_ctx *pc, double fraction)
+{
+    double f = pc->base + pc->share * fmin(fmax(fraction, 0.0), 1.0);
+    if (f < pc->done) f = pc->done;
+    pc->done = f;
+    if (pc->opt->progress) pc->opt->progress(pc->opt->user, pc->stage, f);
+}
+
+static void param_progress(void *ctx, const char *stage, double fraction)
+{
+    (void)stage;
+    report(ctx, fraction);
+}
+
+static void optimize_progress(void *user, uint32_t iteration, double energy, double step)
+{
+    (void)energy, (void)step;
+    progress_ctx *pc = user;
+    report(pc, (double)iteration / pc->iterations);
+}
+
+static void begin(progress_ctx *pc, sq_remesh_stats *stats, const char *stage, double share)
+{
+    pc->base += pc->share;
+    pc->share = share;
+    pc->stage = stage;
+    stats->stage = stage;
+    report(pc, 0);
+}
+
+void sq_remesh_result_free(sq_remesh_result *r)
+{
+    if (!r) return;
+    sq_quad_mesh_free(&r->quads);
+    free(r->valence);
+    sq_map_free(&r->map);
+    sq_map_free(&r->optimized);
+    sq_map_free(&r->igm);
+    memset(r, 0, sizeof *r);
+}
+
+sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_options *opt,
+                    sq_remesh_result *out, sq_remesh_stats *stats, sq_error *err)
+{
+    sq_remesh_stats local;
+    if (!stats) stats = &local;
+    memset(stats, 0, sizeof *stats);
+    if (!m || !opt || !out) return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_remesh: NULL argument");
+    memset(out, 0, sizeof *out);
+    if (opt->quads < 0 || opt->edge_length < 0 || (opt->quads > 0 && opt->edge_length > 0))
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_remesh: give a quad count or an edge length, not both");
+    double t0 = sq_now();
+    progress_ctx pc = {opt, "cones", 0, 0, 0, 0};
+    sq_param P;
+    sq_param_init(&P);
+    sq_map M, igm;
+    memset(&M, 0, sizeof M);
+    memset(&igm, 0, sizeof igm);
+    sq_status st = SQ_OK;
+
+    /* 1. cones */
+    begin(&pc, stats, "cones", SHARE_CONES);
+    out->valence = malloc(((size_t)m->nv + 1) * sizeof *out->valence);
+    if (!out->valence) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (cones)");
+        goto fail;
+    }
+    if (valence) {
+        memcpy(out->valence, valence, (size_t)m->nv * sizeof *valence);
+        st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
+        if (!st) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
+    } else {
+        sq_cones_from_field_options fo;
+        sq_cones_from_field_default_options(&fo);
+        stats->cones_from_field = 1;
+        st = sq_cones_from_field(m, &fo, out->valence, &stats->field, err);
+    }
+    if (st) goto fail;
+    for (uint32_t v = 0; v < m->nv; v++) stats->cones += out->valence[v] != 4;
+    stats->t_cones = sq_now() - t0;
+
+    /* 2. param (seed 7-9) */
+    double t1 = sq_now();
+    begin(&pc, stats, "param", SHARE_PARAM);
+    sq_param_options po;
+    sq_param_options_default(&po);
+    po.seed = opt->seed ? opt->seed : 1;
+    po.attempts = opt->attempts ? opt->attempts : 4;
+    po.progress = param_progress;
+    po.progress_ctx = &pc;
+    st = sq_param_build(m, out->valence, &po, &P, &stats->param, err);
+    stats->t_param = sq_now() - t1;
+    if (st) goto fail;
+
+    /* 3. the map, exact */
+    t1 = sq_now();
+    begin(&pc, stats, "map", 0);
+    st = sq_remesh_param_map(&P, m, out->valence, &M, err);
+    if (!st && opt->keep_maps) st = sq_remesh_param_map(&P, m, out->valence, &out->map, err);
+    sq_param_free(&P);
+    stats->t_map = sq_now() - t1;
+    if (st) goto fail;
+
+    /* 4. optimize: rotations kept, translations free */
+    t1 = sq_now();
+    begin(&pc, stats, "optimize", SHARE_OPTIMIZE);
+    stats->conformal_before = sq_remesh_conformal_mean(&M);
+    sq_optimize_options oo;
+    memset(&oo, 0, sizeof oo);
+    oo.basis = SQ_OPTIMIZE_FREE_TRANSLATIONS;
+    oo.max_iterations = opt->optimize_iterations ? opt->optimize_iterations : SQ_REMESH_ITERATIONS;
+    pc.iterations = oo.max_iterations;
+    oo.progress = optimize_progress;
+    oo.user = &pc;
+    st = sq_optimize_map(&M, &oo, &stats->optimize, err);
+    stats->conformal_after = sq_remesh_conformal_mean(&M);
+    stats->t_optimize = sq_now() - t1;
+    if (st) goto fail;
+
+    /* 5. quantize (with its own optimization step) */
+    t1 = sq_now();
+    begin(&pc, stats, "quantize", SHARE_QUANTIZE);
+    sq_quantize_options qo;
+    memset(&qo, 0, sizeof qo);
+    qo.quads = opt->edge_length > 0 ? 0 : opt->quads > 0 ? opt->quads : SQ_REMESH_QUADS;
+    qo.edge_length = opt->edge_length;
+    qo.targets = SQ_TARGETS_MAP;
+    qo.optimize = 1;
+    st = sq_quantize(&M, &qo, &igm, &stats->quantize, err);
+    stats->t_quantize = sq_now() - t1;
+    if (st) goto fail;
+
+    /* 6. extract, untangle, refuse what stays folded */
+    t1 = sq_now();
+    begin(&pc, stats, "extract", 1.0 - pc.base - pc.share);
+    st = sq_extract(&igm, &out->quads, &stats->extract, err);
+    if (!st) st = sq_extract_untangle(&igm, &out->quads, &stats->untangle, err);
+    stats->t_extract = sq_now() - t1;
+    if (st) goto fail;
+    if (stats->untangle.folded_after > 0) {
+        st = sq_error_set(err, SQ_ERR_SOLVER,
+                          "%u of %u quads stay folded over the surface after untangling (the "
+                          "integer-grid map is too distorted there); try more optimizer "
+                          "iterations or another quad count",
+                          stats->untangle.folded_after, out->quads.nq);
+        goto fail;
+    }
+    report(&pc, 1);
+    if (opt->keep_maps) {
+        out->optimized = M;
+        out->igm = igm;
+        memset(&M, 0, sizeof M);
+        memset(&igm, 0, sizeof igm);
+    }
+    sq_map_free(&M);
+    sq_map_free(&igm);
+    stats->t_total = sq_now() - t0;
+    return SQ_OK;
+
+fail:
+    stats->t_total = sq_now() - t0;
+    sq_param_free(&P);
+    sq_map_free(&M);
+    sq_map_free(&igm);
+    sq_remesh_result_free(out);
+    return st;
+}

@@ -1,0 +1,103 @@
+/* seamquad: the whole pipeline, a closed triangle mesh in, a quad mesh out
+ * (docs/remesh.md).
+ *
+ * Stages, each checked before the next starts:
+ *  1. cones: the caller's, or a smooth cross field's singularities made
+ *     admissible (sq_cones_from_field);
+ *  2. param: the seamless map of the seed (sq_param_build): exact seams,
+ *     every UV triangle positive, exactly the cones;
+ *  3. map: that map as an exact sq_map of a refinement of the input
+ *     (sq_remesh_param_map);
+ *  4. optimize: its distortion lowered with its rotations kept and its
+ *     translations free (sq_optimize_map, progressive references);
+ *  5. quantize: the integer-grid map at the requested size, with its own
+ *     optimization step (sq_quantize);
+ *  6. extract: the quad mesh (sq_extract), folded quads relaxed on the
+ *     surface (sq_extract_untangle); a quad still folded fails the run.
+ *
+ * Guarantees of a successful result: a closed, manifold, pure-quad mesh of
+ * the input's genus whose irregular vertices are exactly the cones (a cone
+ * of valence k is a vertex of k quads), every vertex on the input surface,
+ * no quad folded (both triangulations positive against the surface
+ * normal, as the referee tests). On failure nothing is returned, the
+ * error names the stage (sq_remesh_stats.stage) and the cause.
+ *
+ * The library never prints or exits. */
+#ifndef SQ_REMESH_H
+#define SQ_REMESH_H
+
+#include <stdint.h>
+
+#include "sq_cross_field.h"
+#include "sq_error.h"
+#include "sq_extract.h"
+#include "sq_map.h"
+#include "sq_mesh.h"
+#include "sq_optimize.h"
+#include "sq_param.h"
+#include "sq_quantize.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SQ_REMESH_QUADS 5000.0
+#define SQ_REMESH_ITERATIONS 100u
+
+typedef struct sq_remesh_options {
+    double quads;                  /* about this many quads; 0 with          */
+                                   /* edge_length 0: SQ_REMESH_QUADS         */
+    double edge_length;            /* or quad edges of about this length     */
+    uint32_t optimize_iterations;  /* stage 4 (0: SQ_REMESH_ITERATIONS)      */
+    uint64_t seed;                 /* param's cut-graph seed (0: 1)          */
+    uint32_t attempts;             /* param's attempts (0: 4)                */
+    int keep_maps;                 /* 1: the result keeps the three maps     */
+    /* progress (may be NULL): the stage and the fraction of the whole run */
+    void (*progress)(void *user, const char *stage, double fraction);
+    void *user;
+} sq_remesh_options;
+
+typedef struct sq_remesh_stats {
+    const char *stage;             /* the stage running, or that failed      */
+    int cones_from_field;          /* 1: stage 1 computed the cones          */
+    uint32_t cones;                /* vertices of valence != 4               */
+    sq_cones_from_field_stats field;
+    sq_param_stats param;
+    sq_optimize_report optimize;
+    double conformal_before, conformal_after; /* area-weighted mean          */
+                                   /* sigma1/sigma2 of the map, stage 4     */
+    sq_quantize_stats quantize;
+    sq_extract_stats extract;
+    sq_untangle_stats untangle;
+    double t_cones, t_param, t_map, t_optimize, t_quantize, t_extract, t_total;
+} sq_remesh_stats;
+
+typedef struct sq_remesh_result {
+    sq_quad_mesh quads;
+    int32_t *valence;              /* nv of the input: the cones used        */
+    /* with keep_maps: param's map, the optimized map, the integer-grid map */
+    sq_map map, optimized, igm;
+} sq_remesh_result;
+
+/* Runs the pipeline on the closed, connected triangle mesh m (as
+ * sq_mesh_from_soup builds it). valence: nv cones (4 = regular), or NULL
+ * for cones from the cross field. out is overwritten; on failure it is left
+ * empty. stats (may be NULL) get per-stage figures and times. */
+sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_options *opt,
+                    sq_remesh_result *out, sq_remesh_stats *stats, sq_error *err);
+
+void sq_remesh_result_free(sq_remesh_result *r);
+
+/* Stage 3: param's result as an exact map of a refinement of m (its first
+ * vertices are m's), checked by sq_map_check. */
+sq_status sq_remesh_param_map(const sq_param *P, const sq_mesh *m, const int32_t *valence,
+                              sq_map *out, sq_error *err);
+
+/* The area-weighted mean conformal ratio sigma1/sigma2 of a map (the
+ * referee's figure; triangles of zero area on the surface left out). */
+double sq_remesh_conformal_mean(const sq_map *M);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

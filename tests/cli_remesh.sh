@@ -1,0 +1,150 @@
+#!/usr/bin/env bash
+# End-to-end tests of `seamquad remesh` (issue 26): a closed triangle mesh in,
+# a quad mesh out, through cones, param, optimize, quantize and extract.
+#  - examples/cube.obj with its cones and with cones from the cross field,
+#    mpz/eight with its cones (and, not under the sanitizers, mpz/helmet):
+#    the referee (shared/tools/check_quad.py MESH QUADS --cones CONES)
+#    passes: pure quads, closed, manifold, genus, irregular vertices exactly
+#    the cones, nothing folded; the quad count within 5% of the target
+#    (above the fewest the layout allows); --json complete; eight's mean
+#    |angle - 90| below 8 degrees (QuadriFlow's median at 5K quads is 7.9),
+#    the cube's too, helmet's below 60 (a guard: docs/remesh.md);
+#  - --keep DIR writes the cones, param's map, the optimized map and the
+#    integer-grid map, which check_param.py passes (the last with --integer);
+#  - bad input (tests/data/broken: every mesh and cone file of its
+#    EXPECTED.tsv and EXPECTED_io.tsv), a directory, an unreadable file, an
+#    unwritable output (refused before any work: no progress line) and bad
+#    flags: the documented exit code and message, nothing written.
+# Prints PASS/FAIL per case and a total.
+set -u
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${SQ_BIN:-$root/build/bin/seamquad}
+shared=${SQ_SHARED_DIR:-$root/../shared}
+quad_ref=$shared/tools/check_quad.py
+param_ref=$shared/tools/check_param.py
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# remeshes NAME MESH CONES(or -) TARGET MAX_ANGLE [ARGS...]: remesh passes the
+# referee, the quad count is within 5% of the target (or the fewest), the
+# mean |angle - 90| is below MAX_ANGLE, and --json agrees with the file
+remeshes() {
+  local name=$1 mesh=$2 cones=$3 target=$4 max_angle=$5
+  shift 5
+  local out=$tmp/$name cargs=() rargs=()
+  [ "$cones" != - ] && cargs=(--cones "$cones") && rargs=(--cones "$cones")
+  if ! "$bin" remesh "$mesh" "${cargs[@]}" --quads "$target" -o "$out.obj" --json "$@" >"$out.json" 2>"$out.err"; then
+    bad "$name: remesh failed: $(tail -1 "$out.err")"
+    return
+  fi
+  # cones from the field: the referee gets the cones remesh used (--keep)
+  if [ "$cones" = - ] && [ -s "$tmp/keep_$name/cones.txt" ]; then
+    python3 - "$tmp/keep_$name/cones.txt" "$mesh" "$out.Th_hat" <<'PY'
+import math, sys
+nv = sum(1 for l in open(sys.argv[2]) if l.startswith("v "))
+val = [4] * nv
+for l in open(sys.argv[1]):
+    if l.strip() and not l.startswith("#"):
+        v, k = l.split()
+        val[int(v)] = int(k)
+open(sys.argv[3], "w").write("".join("%.17g\n" % (k * math.pi / 2) for k in val))
+PY
+    rargs=(--cones "$out.Th_hat")
+  fi
+  python3 "$quad_ref" "$mesh" "$out.obj" "${rargs[@]}" --json "$out.ref.json" >"$out.ref" 2>&1
+  local rc=$?
+  if [ $rc -eq 0 ] && python3 - "$out.json" "$out.ref.json" "$out.obj" "$target" "$max_angle" <<'PY'; then
+import json, sys
+j, r = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+target, max_angle = float(sys.argv[4]), float(sys.argv[5])
+nq = sum(1 for l in open(sys.argv[3]) if l.startswith("f "))
+assert j["ok"] and j["extract"]["quads"] == nq and j["extract"]["folded_after"] == 0, j
+q = j["quantize"]
+assert abs(nq - target) <= 0.05 * target or nq <= 1.05 * q["min_quads"], (nq, q)
+assert j["extract"]["irregular"] == j["cones"], j
+assert j["optimize"]["conformal_after"] <= j["optimize"]["conformal_before"], j
+ang = r["quality"]["angle_mean_abs_dev_from_90_deg"]
+assert ang < max_angle, ang
+for k in ("cones", "param", "optimize", "quantize", "extract", "total"):
+    assert j["time_s"][k] >= 0, k
+PY
+    ok; echo "PASS $name: $(tail -1 "$out.ref")"
+  else
+    bad "$name: $(tail -1 "$out.ref") $(head -c 600 "$out.json")"
+  fi
+}
+
+cube=$root/examples/cube.obj
+remeshes cube "$cube" "$root/examples/cube.cones" 1000 8
+mkdir -p "$tmp/keep_cube_field"
+remeshes cube_field "$cube" - 1000 8 --keep "$tmp/keep_cube_field"
+remeshes eight "$shared/data/mpz/eight.obj" "$shared/data/mpz/eight_Th_hat" 5000 8 --keep "$tmp/keep_eight"
+if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
+  # helmet: valid, but param's map is still far from converged after the
+  # default 100 optimizer iterations (mean |angle - 90| about 48 degrees)
+  remeshes helmet "$shared/data/mpz/helmet.obj" "$shared/data/mpz/helmet_Th_hat" 5000 60
+fi
+
+# --keep: the intermediates pass the map referee
+k=$tmp/keep_eight
+e=$shared/data/mpz/eight.obj
+ec=$shared/data/mpz/eight_Th_hat
+if [ -s "$k/cones.txt" ] && python3 "$param_ref" "$e" "$ec" "$k/map.obj" --integer >"$tmp/k1" 2>&1 \
+    && python3 "$param_ref" "$e" "$ec" "$k/optimized.obj" >"$tmp/k2" 2>&1 \
+    && python3 "$param_ref" "$e" "$ec" "$k/igm.obj" --integer >"$tmp/k3" 2>&1; then
+  ok; echo "PASS --keep: cones, map (integer), optimized map, integer-grid map pass check_param"
+else
+  bad "--keep: $(ls "$k") $(tail -1 "$tmp/k1") $(tail -1 "$tmp/k2" 2>/dev/null) $(tail -1 "$tmp/k3" 2>/dev/null)"
+fi
+
+# --- bad input: exit code, message, nothing written ---------------------------
+nothing_written() { [ -z "$(ls -A "$tmp/e" 2>/dev/null)" ]; }
+mkdir -p "$tmp/e"
+refused() { # refused NAME CODE SUBSTRING ARGS...
+  local name=$1 code=$2 sub=$3
+  shift 3
+  "$bin" remesh "$@" >"$tmp/out.txt" 2>"$tmp/err.txt"
+  local rc=$?
+  if [ $rc -eq "$code" ] && grep -qF -- "$sub" "$tmp/err.txt" && nothing_written; then
+    ok; echo "PASS $name: exit $rc, $(head -c 160 "$tmp/err.txt" | head -1)"
+  else
+    bad "$name: exit $rc (expected $code with '$sub'): $(cat "$tmp/err.txt") $(ls "$tmp/e")"
+  fi
+  rm -rf "$tmp/e" && mkdir -p "$tmp/e"
+}
+while IFS=$'\t' read -r mesh cones _ sub; do
+  case "$mesh" in '#'*|'') continue ;; esac
+  args=("$root/$mesh")
+  [ "$cones" != - ] && args+=(--cones "$root/$cones")
+  refused "$(basename "$mesh") $(basename "$cones")" 1 "$sub" "${args[@]}" -o "$tmp/e/q.obj"
+done <"$root/tests/data/broken/EXPECTED.tsv"
+while IFS=$'\t' read -r file _ sub; do
+  case "$file" in '#'*|'') continue ;; esac
+  refused "$file" 1 "$sub" "$root/tests/data/broken/$file" -o "$tmp/e/q.obj"
+done <"$root/tests/data/broken/EXPECTED_io.tsv"
+refused "a directory" 1 "$root/examples" "$root/examples" -o "$tmp/e/q.obj"
+refused "a missing file" 1 "no_such.obj" "$tmp/no_such.obj" -o "$tmp/e/q.obj"
+# an unwritable output is found before the work starts: no progress line
+refused "unwritable output" 1 "no/such/dir" "$cube" -o "$tmp/e/no/such/dir/q.obj"
+if grep -q "param" "$tmp/err.txt"; then bad "unwritable output: the work started"; else ok; fi
+refused "unwritable --keep" 1 "not a directory" "$cube" -o "$tmp/e/q.obj" --keep "$cube"
+# bad flags
+refused "no output" 2 "give MESH and -o" "$cube"
+refused "--quads 0" 2 "between 1 and 1e8" "$cube" --quads 0 -o "$tmp/e/q.obj"
+refused "--quads -5" 2 "between 1 and 1e8" "$cube" --quads -5 -o "$tmp/e/q.obj"
+refused "--quads 2e8" 2 "between 1 and 1e8" "$cube" --quads 2e8 -o "$tmp/e/q.obj"
+refused "--quads x" 2 "needs a number" "$cube" --quads x -o "$tmp/e/q.obj"
+refused "both sizes" 2 "not both" "$cube" --quads 100 --edge-length 0.1 -o "$tmp/e/q.obj"
+refused "--edge-length 0" 2 "must be positive" "$cube" --edge-length 0 -o "$tmp/e/q.obj"
+refused "--iterations 0" 2 "count from 1" "$cube" --iterations 0 -o "$tmp/e/q.obj"
+refused "unknown option" 2 "unknown option" "$cube" --frobnicate -o "$tmp/e/q.obj"
+refused "output .ply" 2 "must be an .obj" "$cube" -o "$tmp/e/q.ply"
+refused "output = input" 2 "would overwrite" "$cube" -o "$cube"
+if "$bin" remesh --help | grep -q "Guarantees of QUADS.obj"; then ok; else bad "--help"; fi
+
+echo "cli_remesh: $pass passed, $fail failed"
+[ $fail -eq 0 ]
