@@ -591,6 +591,20 @@ sq_status sq_tmesh_lengths(const sq_tmesh_sides *T, int64_t *length, sq_tmesh_le
 
 /* ---- a target quad count ------------------------------------------------ */
 
+/* See sq_tmesh_lengths_for_quads: the spread of the second search's
+ * per-arc factors, and the factor's u in [-1, 1] from the arc's index (a
+ * multiplicative hash: fixed, so the result is reproducible). */
+#define JITTER 0.04
+
+static double jitter(uint32_t a)
+{
+    uint32_t h = (a + 1) * 2654435761u;
+    h ^= h >> 15;
+    h *= 2246822519u;
+    h ^= h >> 13;
+    return (double)h / 2147483647.5 - 1.0;
+}
+
 sq_status sq_tmesh_lengths_for_quads(const sq_tmesh_sides *T, double n_quads, int64_t *length,
                                      sq_tmesh_lengths_stats *stats, sq_error *err)
 {
@@ -636,35 +650,42 @@ sq_status sq_tmesh_lengths_for_quads(const sq_tmesh_sides *T, double n_quads, in
                 s1 += T->target[T->side_arc[i]];
             area += s0 * s1;
         }
-        double scale = sqrt(n_quads / area), best_err = fabs(stats->quads - n_quads);
+        double scale0 = sqrt(n_quads / area), best_err = fabs(stats->quads - n_quads);
         double tmax = 0.0;
         for (uint32_t a = 0; a < na; a++) tmax = fmax(tmax, T->target[a]);
-        /* the count jumps with the rounding: once a scale below and one
-         * above the request are known, bisect between them */
-        double below = 0.0, above = 0.0;
-        for (int iter = 0; iter < 16; iter++) {
-            if (scale * tmax > SQ_TMESH_MAX_LENGTH) scale = SQ_TMESH_MAX_LENGTH / tmax;
-            for (uint32_t a = 0; a < na; a++) t[a] = T->target[a] * scale;
-            memset(&sub, 0, sizeof sub);
-            s = solve_lengths(&M, t, trial, &sub, err);
-            stats->solves += sub.solves;
-            if (s != SQ_OK) break;
-            double e = fabs(sub.quads - n_quads);
-            if (e < best_err) {
-                best_err = e;
-                memcpy(length, trial, (size_t)na * sizeof *trial);
-                uint32_t solves = stats->solves;
-                double min_quads = stats->min_quads;
-                *stats = sub;
-                stats->solves = solves;
-                stats->min_quads = min_quads;
-                stats->target_scale = scale;
+        /* The count jumps with the rounding: once a scale below and one
+         * above the request are known, bisect between them. Where many
+         * arcs have the same target (a symmetric layout: the cube's), they
+         * all round together and the count jumps past the request at one
+         * scale; a second search then gives every arc its own factor
+         * 1 + JITTER u (u in [-1, 1], fixed by the arc's index), which
+         * spreads their thresholds so that the count rises in small steps. */
+        for (int pass = 0; pass < 2 && s == SQ_OK && best_err > 0.05 * n_quads; pass++) {
+            double scale = scale0, below = 0.0, above = 0.0;
+            for (int iter = 0; iter < 16; iter++) {
+                if (scale * tmax * (1 + JITTER) > SQ_TMESH_MAX_LENGTH) scale = SQ_TMESH_MAX_LENGTH / (tmax * (1 + JITTER));
+                for (uint32_t a = 0; a < na; a++) t[a] = T->target[a] * scale * (pass ? 1.0 + JITTER * jitter(a) : 1.0);
+                memset(&sub, 0, sizeof sub);
+                s = solve_lengths(&M, t, trial, &sub, err);
+                stats->solves += sub.solves;
+                if (s != SQ_OK) break;
+                double e = fabs(sub.quads - n_quads);
+                if (e < best_err) {
+                    best_err = e;
+                    memcpy(length, trial, (size_t)na * sizeof *trial);
+                    uint32_t solves = stats->solves;
+                    double min_quads = stats->min_quads;
+                    *stats = sub;
+                    stats->solves = solves;
+                    stats->min_quads = min_quads;
+                    stats->target_scale = scale;
+                }
+                if (e <= 0.05 * n_quads || sub.quads <= 0.0) break;
+                if (sub.quads < n_quads) below = scale;
+                else above = scale;
+                if (below > 0.0 && above > 0.0) scale = sqrt(below * above);
+                else scale *= sqrt(n_quads / sub.quads);
             }
-            if (e <= 0.05 * n_quads || sub.quads <= 0.0) break;
-            if (sub.quads < n_quads) below = scale;
-            else above = scale;
-            if (below > 0.0 && above > 0.0) scale = sqrt(below * above);
-            else scale *= sqrt(n_quads / sub.quads);
         }
     }
     free(t);

@@ -97,7 +97,9 @@ sq_status sq_tmesh_lengths(const sq_tmesh_sides *T, int64_t *length,
 
 /* Like sq_tmesh_lengths with the targets scaled by one factor, chosen (a few
  * solves) so that the quad count sum_f L(f,0) L(f,1) comes within 5% of
- * n_quads where it can. When n_quads is below the smallest reachable count
+ * n_quads where it can; where the count jumps over that band at one scale
+ * (arcs of equal targets rounding together), a second search scales each
+ * arc's target by its own fixed factor within 4% of the first. When n_quads is below the smallest reachable count
  * (stats->min_quads) the result is that smallest layout; otherwise the
  * closest count found is returned, in stats->quads. */
 sq_status sq_tmesh_lengths_for_quads(const sq_tmesh_sides *T, double n_quads, int64_t *length,
