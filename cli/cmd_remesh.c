@@ -146,8 +146,10 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
            s->param.steiner, s->param.attempts, s->t_param);
     printf("optimize      mean conformal ratio %.4g -> %.4g, %u iterations (%u with progressive\n"
            "              references), %.2f s: %s\n",
-           s->conformal_before, s->conformal_after, s->optimize.iterations,
+           s->optimize.conformal_before, s->optimize.conformal_after, s->optimize.iterations,
            s->optimize.reference_iterations, s->t_optimize, s->optimize.why);
+    printf("simplify      %u rounds removed %u added vertices: %u -> %u faces\n", s->optimize.rounds,
+           s->optimize.removed, s->optimize.faces_before, s->optimize.faces_after);
     printf("quantize      %.0f quads", s->quantize.quads);
     if (s->quantize.min_quads > 0 && s->quantize.quads > 0 && s->quantize.min_quads >= s->quantize.quads)
         printf(" (the fewest this layout allows)");
@@ -174,11 +176,13 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     printf(",\n  \"cones\": %u, \"cones_from_field\": %s", s->cones, s->cones_from_field ? "true" : "false");
     printf(",\n  \"param\": {\"faces\": %u, \"steiner\": %u, \"attempts\": %u, \"seconds\": %.6f}",
            s->param.faces_out, s->param.steiner, s->param.attempts, s->t_param);
-    printf(",\n  \"optimize\": {\"iterations\": %u, \"reference_iterations\": %u, \"conformal_before\": ",
-           s->optimize.iterations, s->optimize.reference_iterations);
-    sq_json_double(stdout, s->conformal_before);
+    printf(",\n  \"optimize\": {\"iterations\": %u, \"reference_iterations\": %u, \"rounds\": %u, "
+           "\"removed\": %u, \"faces_before\": %u, \"faces_after\": %u, \"conformal_before\": ",
+           s->optimize.iterations, s->optimize.reference_iterations, s->optimize.rounds, s->optimize.removed,
+           s->optimize.faces_before, s->optimize.faces_after);
+    sq_json_double(stdout, s->optimize.conformal_before);
     printf(", \"conformal_after\": ");
-    sq_json_double(stdout, s->conformal_after);
+    sq_json_double(stdout, s->optimize.conformal_after);
     printf(", \"seconds\": %.6f, \"stopped\": ", s->t_optimize);
     sq_json_string(stdout, s->optimize.why);
     printf("}");
@@ -188,9 +192,9 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
            "\"folded_after\": %u, \"seconds\": %.6f}",
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before,
            s->untangle.folded_after, s->t_extract);
-    printf(",\n  \"time_s\": {\"cones\": %.6f, \"param\": %.6f, \"map\": %.6f, \"optimize\": %.6f, "
+    printf(",\n  \"time_s\": {\"cones\": %.6f, \"param\": %.6f, \"optimize\": %.6f, "
            "\"quantize\": %.6f, \"extract\": %.6f, \"total\": %.6f}",
-           s->t_cones, s->t_param, s->t_map, s->t_optimize, s->t_quantize, s->t_extract, s->t_total);
+           s->t_cones, s->t_param, s->t_optimize, s->t_quantize, s->t_extract, s->t_total);
     if (st != SQ_OK) {
         printf(",\n  ");
         sq_json_error(st, stage, msg);

@@ -133,28 +133,18 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     stats->t_param = sq_now() - t1;
     if (st) goto fail;
 
-    /* 3. the map, exact */
-    t1 = sq_now();
-    begin(&pc, stats, "map", 0);
-    st = sq_remesh_param_map(&P, m, out->valence, &M, err);
-    if (!st && opt->keep_maps) st = sq_remesh_param_map(&P, m, out->valence, &out->map, err);
-    sq_param_free(&P);
-    stats->t_map = sq_now() - t1;
-    if (st) goto fail;
-
-    /* 4. optimize: rotations kept, translations free */
+    /* 3 and 4. the map, exact, optimized and simplified in rounds */
     t1 = sq_now();
     begin(&pc, stats, "optimize", SHARE_OPTIMIZE);
-    stats->conformal_before = sq_remesh_conformal_mean(&M);
+    if (opt->keep_maps && (st = sq_remesh_param_map(&P, m, out->valence, &out->map, err))) goto fail;
     sq_optimize_options oo;
     memset(&oo, 0, sizeof oo);
     oo.basis = SQ_OPTIMIZE_FREE_TRANSLATIONS;
-    oo.max_iterations = opt->optimize_iterations ? opt->optimize_iterations : SQ_REMESH_ITERATIONS;
-    pc.iterations = oo.max_iterations;
+    pc.iterations = opt->optimize_iterations ? opt->optimize_iterations : SQ_REMESH_ITERATIONS;
     oo.progress = optimize_progress;
     oo.user = &pc;
-    st = sq_optimize_map(&M, &oo, &stats->optimize, err);
-    stats->conformal_after = sq_remesh_conformal_mean(&M);
+    st = sq_remesh_optimize(m, out->valence, &P, &oo, pc.iterations, &M, &stats->optimize, err);
+    sq_param_free(&P);
     stats->t_optimize = sq_now() - t1;
     if (st) goto fail;
 

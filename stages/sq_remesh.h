@@ -9,7 +9,9 @@
  *  3. map: that map as an exact sq_map of a refinement of the input
  *     (sq_remesh_param_map);
  *  4. optimize: its distortion lowered with its rotations kept and its
- *     translations free (sq_optimize_map, progressive references);
+ *     translations free (sq_optimize_map, progressive references), in
+ *     rounds each followed by param's simplification, which removes far
+ *     more added vertices from the optimized map (sq_remesh_optimize);
  *  5. quantize: the integer-grid map at the requested size, with its own
  *     optimization step (sq_quantize);
  *  6. extract: the quad mesh (sq_extract), folded quads relaxed on the
@@ -57,19 +59,29 @@ typedef struct sq_remesh_options {
     void *user;
 } sq_remesh_options;
 
+/* Stage 4's figures. */
+typedef struct sq_remesh_optimize_report {
+    uint32_t iterations;           /* optimizer iterations, all rounds       */
+    uint32_t reference_iterations; /* of them, with progressive references   */
+    uint32_t rounds;               /* simplifications run                    */
+    uint32_t removed;              /* vertices they removed                  */
+    uint32_t faces_before, faces_after;
+    double conformal_before, conformal_after; /* area-weighted mean          */
+                                   /* sigma1/sigma2 (the referee's figure)   */
+    char why[160];                 /* why the last optimizer run stopped     */
+} sq_remesh_optimize_report;
+
 typedef struct sq_remesh_stats {
     const char *stage;             /* the stage running, or that failed      */
     int cones_from_field;          /* 1: stage 1 computed the cones          */
     uint32_t cones;                /* vertices of valence != 4               */
     sq_cones_from_field_stats field;
     sq_param_stats param;
-    sq_optimize_report optimize;
-    double conformal_before, conformal_after; /* area-weighted mean          */
-                                   /* sigma1/sigma2 of the map, stage 4     */
+    sq_remesh_optimize_report optimize;
     sq_quantize_stats quantize;
     sq_extract_stats extract;
     sq_untangle_stats untangle;
-    double t_cones, t_param, t_map, t_optimize, t_quantize, t_extract, t_total;
+    double t_cones, t_param, t_optimize, t_quantize, t_extract, t_total; /* stage 3 in t_optimize */
 } sq_remesh_stats;
 
 typedef struct sq_remesh_result {
@@ -92,6 +104,15 @@ void sq_remesh_result_free(sq_remesh_result *r);
  * vertices are m's), checked by sq_map_check. */
 sq_status sq_remesh_param_map(const sq_param *P, const sq_mesh *m, const int32_t *valence,
                               sq_map *out, sq_error *err);
+
+/* Stage 4: P's map optimized (base: the optimizer's options; its
+ * max_iterations is ignored) for at most `budget` iterations in all, in
+ * rounds each followed by sq_param_simplify on P with the optimized UVs
+ * (sq_remesh_optimize.c). P is simplified in place; *M gets the final map
+ * (exact, sq_map_check passes). */
+sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param *P,
+                             const sq_optimize_options *base, uint32_t budget, sq_map *M,
+                             sq_remesh_optimize_report *rep, sq_error *err);
 
 /* The area-weighted mean conformal ratio sigma1/sigma2 of a map (the
  * referee's figure; triangles of zero area on the surface left out). */

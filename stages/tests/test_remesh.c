@@ -125,7 +125,7 @@ static void test_cube_field(void **state)
     assert_int_equal(st.cones, 8);
     check_quads(&mesh, &R, 600);
     assert_int_equal(st.untangle.folded_after, 0);
-    assert_true(st.conformal_after <= st.conformal_before);
+    assert_true(st.optimize.conformal_after <= st.optimize.conformal_before);
     assert_true(log.calls >= 6 && log.backwards == 0 && fabs(log.last - 1) < 1e-12);
     assert_true(st.t_total >= st.t_param + st.t_optimize + st.t_quantize);
     /* maps are not kept unless asked */
@@ -162,12 +162,18 @@ static void test_eight_kept_maps(void **state)
     assert_int_equal(sq_map_check(&R.map, SQ_MAP_REQUIRE_INTEGER, &err), SQ_OK);
     assert_int_equal(sq_map_check(&R.optimized, 0, &err), SQ_OK);
     assert_int_equal(sq_map_check(&R.igm, SQ_MAP_REQUIRE_INTEGER, &err), SQ_OK);
-    assert_int_equal(R.map.mesh.nv, R.optimized.mesh.nv);
     /* eight's rotations allow a good map: the measured 27.7 -> 1.23 */
-    print_message("eight: conformal %.4g -> %.4g (%.4g recomputed)\n", st.conformal_before,
-                  st.conformal_after, sq_remesh_conformal_mean(&R.optimized));
-    assert_true(st.conformal_before > 10 && st.conformal_after < 1.5);
-    assert_true(fabs(sq_remesh_conformal_mean(&R.optimized) - st.conformal_after) < 1e-12);
+    print_message("eight: conformal %.4g -> %.4g (%.4g recomputed), faces %u -> %u in %u rounds\n",
+                  st.optimize.conformal_before, st.optimize.conformal_after,
+                  sq_remesh_conformal_mean(&R.optimized), st.optimize.faces_before, st.optimize.faces_after,
+                  st.optimize.rounds);
+    assert_true(st.optimize.conformal_before > 10 && st.optimize.conformal_after < 1.5);
+    assert_true(fabs(sq_remesh_conformal_mean(&R.optimized) - st.optimize.conformal_after) < 1e-12);
+    /* the rounds' simplification: fewer faces, param's map kept as it was */
+    assert_true(st.optimize.rounds >= 1 && st.optimize.removed > 0);
+    assert_int_equal(st.optimize.faces_after, R.optimized.mesh.nf);
+    assert_int_equal(st.optimize.faces_before, R.map.mesh.nf);
+    assert_int_equal(st.optimize.faces_before - st.optimize.faces_after, 2 * st.optimize.removed);
     sq_remesh_result_free(&R);
     free(val);
     sq_mesh_free(&mesh);

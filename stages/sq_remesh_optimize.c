@@ -1,0 +1,94 @@
+/* seamquad: stage 4 of the pipeline (sq_remesh.h): param's map optimized
+ * and simplified in rounds.
+ *
+ * param's maps carry 10 to 35 times the input's faces: the added vertices
+ * its cuts and overlay needed, most of which its own simplification could
+ * not remove while the map was distorted (a collapse must not make any
+ * triangle more distorted than the worst it replaces). Once the optimizer
+ * has lowered the distortion, far more of them can go. So the budget of
+ * iterations is spent in rounds: ROUND_ITERATIONS iterations
+ * (sq_optimize_map, rotations kept, translations free), the optimized UVs
+ * written back into param's result, sq_param_simplify (every check of the
+ * map kept: exact orientation, seams and cones untouched, every triangle
+ * inside one input triangle), the map rebuilt exactly; while a round
+ * removes at least MIN_REMOVED of the vertices, then the rest of the
+ * budget on the final map. Measured on mpz/helmet (param's map 32,446
+ * faces, mean conformal ratio 419): 4 rounds leave 8,928 faces and the
+ * map at 7.5 after 130 iterations in 17 s, against 28.5 after 100
+ * iterations on the whole map in 34 s.
+ *
+ * Every map handed on passes sq_map_check; the optimizer never returns a
+ * worse map than it was given, and the simplification never a more
+ * distorted triangle. */
+#include <string.h>
+
+#include "sq_remesh.h"
+
+#define ROUND_ITERATIONS 15u
+#define MIN_REMOVED 0.02
+
+/* the map's corner UVs back into P (face f's corner c is halfedge 3f + c
+ * of the map built from P; corners sharing a UV index share the value) */
+static void uv_to_param(const sq_map *M, sq_param *P)
+{
+    for (uint32_t f = 0; f < P->nf; f++)
+        for (int c = 0; c < 3; c++) {
+            uint32_t h = 3 * f + (uint32_t)c, u = P->tri_uv[3 * f + c];
+            P->uv[2 * u] = M->he_uv[2 * (size_t)h];
+            P->uv[2 * u + 1] = M->he_uv[2 * (size_t)h + 1];
+        }
+}
+
+/* the caller's progress hook, counting the iterations of every round */
+typedef struct round_progress {
+    const sq_optimize_options *base;
+    uint32_t done;
+} round_progress;
+
+static void on_iteration(void *user, uint32_t iteration, double energy, double step)
+{
+    const round_progress *rp = user;
+    rp->base->progress(rp->base->user, rp->done + iteration, energy, step);
+}
+
+sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param *P,
+                             const sq_optimize_options *base, uint32_t budget, sq_map *M,
+                             sq_remesh_optimize_report *rep, sq_error *err)
+{
+    memset(rep, 0, sizeof *rep);
+    memset(M, 0, sizeof *M);
+    sq_status st = sq_remesh_param_map(P, m, valence, M, err);
+    if (st) return st;
+    rep->conformal_before = sq_remesh_conformal_mean(M);
+    rep->faces_before = M->mesh.nf;
+    int simplify = 1;
+    while (rep->iterations < budget) {
+        sq_optimize_options o = *base;
+        round_progress rp = {base, rep->iterations};
+        if (base->progress) o.progress = on_iteration, o.user = &rp;
+        uint32_t left = budget - rep->iterations;
+        o.max_iterations = simplify && left > ROUND_ITERATIONS ? ROUND_ITERATIONS : left;
+        sq_optimize_report r;
+        if ((st = sq_optimize_map(M, &o, &r, err))) return st;
+        rep->iterations += r.iterations;
+        rep->reference_iterations += r.reference_iterations;
+        memcpy(rep->why, r.why, sizeof rep->why);
+        if (!simplify) break;
+        int converged = r.iterations < o.max_iterations;
+        uint32_t removed = 0, nv = M->mesh.nv;
+        uv_to_param(M, P);
+        if ((st = sq_param_simplify(m, P, &removed, err))) return st;
+        rep->rounds++;
+        rep->removed += removed;
+        if (removed > 0) {
+            sq_map_free(M);
+            if ((st = sq_remesh_param_map(P, m, valence, M, err))) return st;
+        }
+        if (removed < MIN_REMOVED * nv) simplify = 0;
+        if (converged && !removed) break;
+        if (!r.iterations && !removed) break;
+    }
+    rep->faces_after = M->mesh.nf;
+    rep->conformal_after = sq_remesh_conformal_mean(M);
+    return SQ_OK;
+}
