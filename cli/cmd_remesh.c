@@ -11,13 +11,15 @@
 #include "cli_common.h"
 #include "sq_io.h"
 #include "sq_mesh.h"
+#include "sq_quad_svg.h"
 #include "sq_remesh.h"
 
 static void help(FILE *f)
 {
     fprintf(f,
             "usage: seamquad remesh MESH -o QUADS.obj [--cones FILE] [--quads N | --edge-length L]\n"
-            "                       [--iterations N] [--seed S] [--keep DIR] [--json] [--quiet]\n"
+            "                       [--iterations N] [--seed S] [--keep DIR] [--picture VIEW.svg]\n"
+            "                       [--json] [--quiet]\n"
             "\n"
             "Turns the closed triangle mesh MESH (OBJ, OFF or PLY) into a closed, pure-quad\n"
             "mesh whose irregular vertices are exactly the cones, every vertex on MESH.\n"
@@ -57,6 +59,8 @@ static void help(FILE *f)
             "  --seed S             param's cut-graph seed (default 1; 4 attempts)\n"
             "  --keep DIR           also write every intermediate into DIR: cones.txt,\n"
             "                       map.obj (param's), optimized.obj, igm.obj\n"
+            "  --picture VIEW.svg   a shaded view of the quads (irregular vertices red\n"
+            "                       below valence 4, blue above)\n"
             "  --json               statistics on stdout: per stage sizes, quality, times\n"
             "  --quiet              no progress on stderr, no summary on stdout\n"
             "  -h, --help           this help\n"
@@ -204,7 +208,7 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
 
 int sq_cmd_remesh(int argc, char **argv)
 {
-    const char *mesh_path = NULL, *out_path = NULL, *cones_path = NULL, *keep_dir = NULL;
+    const char *mesh_path = NULL, *out_path = NULL, *cones_path = NULL, *keep_dir = NULL, *picture = NULL;
     int json = 0, quiet = 0;
     sq_remesh_options opt;
     memset(&opt, 0, sizeof opt);
@@ -220,7 +224,7 @@ int sq_cmd_remesh(int argc, char **argv)
             quiet = 1;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones") ||
                    !strcmp(a, "--quads") || !strcmp(a, "--edge-length") || !strcmp(a, "--iterations") ||
-                   !strcmp(a, "--seed") || !strcmp(a, "--keep")) {
+                   !strcmp(a, "--seed") || !strcmp(a, "--keep") || !strcmp(a, "--picture")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "seamquad remesh: %s needs a value\n", a);
                 return SQ_EXIT_USAGE;
@@ -229,6 +233,7 @@ int sq_cmd_remesh(int argc, char **argv)
             double x = 0;
             if (!strcmp(a, "--cones")) cones_path = v;
             else if (!strcmp(a, "--keep")) keep_dir = v;
+            else if (!strcmp(a, "--picture")) picture = v;
             else if (!strcmp(a, "--quads")) {
                 if (!number_option(a, v, &opt.quads)) return SQ_EXIT_USAGE;
                 have_quads = 1;
@@ -279,10 +284,12 @@ int sq_cmd_remesh(int argc, char **argv)
         fprintf(stderr, "seamquad remesh: the output '%s' must be an .obj file\n", out_path);
         return SQ_EXIT_USAGE;
     }
-    if (!strcmp(out_path, mesh_path) || (cones_path && !strcmp(out_path, cones_path))) {
-        fprintf(stderr, "seamquad remesh: the output '%s' would overwrite an input\n", out_path);
-        return SQ_EXIT_USAGE;
-    }
+    const char *outs[2] = {out_path, picture};
+    for (int k = 0; k < 2; k++)
+        if (outs[k] && (!strcmp(outs[k], mesh_path) || (cones_path && !strcmp(outs[k], cones_path)))) {
+            fprintf(stderr, "seamquad remesh: the output '%s' would overwrite an input\n", outs[k]);
+            return SQ_EXIT_USAGE;
+        }
     opt.keep_maps = keep_dir != NULL;
     progress_state ps = {NULL, 0, sq_now()};
     if (!quiet && !json) {
@@ -303,6 +310,7 @@ int sq_cmd_remesh(int argc, char **argv)
     int32_t *valence = NULL;
     const char *stage = "output";
     sq_status st = probe_output(out_path, &err);
+    if (!st && picture) st = probe_output(picture, &err);
     if (!st && keep_dir) {
         struct stat sb;
         if (stat(keep_dir, &sb) != 0 && mkdir(keep_dir, 0777) != 0)
@@ -333,9 +341,19 @@ int sq_cmd_remesh(int argc, char **argv)
     if (!st) {
         stage = "write";
         st = write_quads(out_path, &R.quads, &err);
+        if (!st && picture) {
+            char title[256];
+            snprintf(title, sizeof title, "%s: %u quads, %u irregular vertices (the cones)", mesh_path, R.quads.nq,
+                     s.extract.irregular);
+            st = sq_quad_svg_write(picture, R.quads.nv, R.quads.pos, R.quads.nq, R.quads.quad, title, &err);
+            if (st) remove(out_path);
+        }
         if (!st && keep_dir) {
             st = write_keep(keep_dir, mesh.nv, &R, &err);
-            if (st) remove(out_path);
+            if (st) {
+                remove(out_path);
+                if (picture) remove(picture);
+            }
         }
     }
     if (json) print_json(st, mesh_path, out_path, &mesh, &R, &s, stage, err.msg);

@@ -9,6 +9,7 @@
 #    (above the fewest the layout allows); --json complete; eight's mean
 #    |angle - 90| below 8 degrees (QuadriFlow's median at 5K quads is 7.9),
 #    the cube's too, helmet's below 60 (a guard: docs/remesh.md);
+#  - --picture writes an SVG view of the quads;
 #  - --keep DIR writes the cones, param's map, the optimized map and the
 #    integer-grid map, which check_param.py passes (the last with --integer);
 #  - bad input (tests/data/broken: every mesh and cone file of its
@@ -82,7 +83,17 @@ cube=$root/examples/cube.obj
 remeshes cube "$cube" "$root/examples/cube.cones" 1000 8
 mkdir -p "$tmp/keep_cube_field"
 remeshes cube_field "$cube" - 1000 8 --keep "$tmp/keep_cube_field"
-remeshes eight "$shared/data/mpz/eight.obj" "$shared/data/mpz/eight_Th_hat" 5000 8 --keep "$tmp/keep_eight"
+remeshes eight "$shared/data/mpz/eight.obj" "$shared/data/mpz/eight_Th_hat" 5000 8 --keep "$tmp/keep_eight" \
+  --picture "$tmp/eight.svg"
+# the picture: an SVG of the quads facing the viewer (about half of them)
+nq=$(grep -c '^f ' "$tmp/eight.obj" 2>/dev/null || echo 0)
+np=$(grep -c '<polygon' "$tmp/eight.svg" 2>/dev/null || echo 0)
+if head -c 4 "$tmp/eight.svg" | grep -q "<svg" && tail -1 "$tmp/eight.svg" | grep -q "</svg>" \
+    && [ "$np" -gt $((nq / 4)) ] && [ "$np" -lt "$nq" ] && grep -q "<circle" "$tmp/eight.svg"; then
+  ok; echo "PASS --picture: $np of $nq quads drawn"
+else
+  bad "--picture: $np polygons for $nq quads"
+fi
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   # helmet: valid, but param's map is still far from converged after the
   # default 100 optimizer iterations (mean |angle - 90| about 48 degrees)
@@ -131,6 +142,7 @@ refused "a missing file" 1 "no_such.obj" "$tmp/no_such.obj" -o "$tmp/e/q.obj"
 # an unwritable output is found before the work starts: no progress line
 refused "unwritable output" 1 "no/such/dir" "$cube" -o "$tmp/e/no/such/dir/q.obj"
 if grep -q "param" "$tmp/err.txt"; then bad "unwritable output: the work started"; else ok; fi
+refused "unwritable --picture" 1 "no/such/dir" "$cube" -o "$tmp/e/q.obj" --picture "$tmp/e/no/such/dir/v.svg"
 refused "unwritable --keep" 1 "not a directory" "$cube" -o "$tmp/e/q.obj" --keep "$cube"
 # bad flags
 refused "no output" 2 "give MESH and -o" "$cube"
