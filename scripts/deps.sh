@@ -10,6 +10,7 @@ SQ_DEBIAN_PACKAGES=(
   libdouble-conversion-dev # shortest exact decimals in OBJ output (core/adapter_double_conversion.cpp)
   libceres-dev        # nonlinear least squares for quad smoothing (stages/adapter_ceres.cpp)
   liblemon-dev        # LEMON network simplex: min-cost flow for integer T-mesh arc lengths (quantize/adapter_lemon.cpp)
+  libcgal-dev         # CGAL Polygon Mesh Processing: the self-intersection test of remesh (stages/adapter_cgal.cpp)
   libosd-dev          # OpenSubdiv: Catmull-Clark patches and limit evaluation (stages/adapter_opensubdiv.cpp)
   libocct-data-exchange-dev       # OpenCASCADE STEP/IGES readers: CAD import check (tests only)
   libocct-modeling-algorithms-dev # OpenCASCADE BRepCheck_Analyzer (tests only)

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "sq_clock.h"
+#include "sq_cgal_adapter.h"
 #include "sq_cones.h"
 
 /* The share of the whole run each stage is given in the progress report
@@ -67,6 +68,44 @@ static void begin(progress_ctx *pc, sq_remesh_stats *stats, const char *stage, d
     pc->stage = stage;
     stats->stage = stage;
     report(pc, 0);
+}
+
+/* The triangle mesh m's intersecting triangle pairs (CGAL). */
+static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_error *err)
+{
+    uint32_t *tri = malloc(3 * ((size_t)m->nf + 1) * sizeof *tri);
+    if (!tri) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h = m->f_he[f];
+        for (int c = 0; c < 3; c++, h = m->he_next[h]) tri[3 * f + c] = m->he_vert[h];
+    }
+    sq_status st = sq_cgal_self_intersections(m->nv, m->pos, m->nf, tri, pairs, NULL, err);
+    free(tri);
+    return st;
+}
+
+/* The quads' intersecting triangle pairs, each quad split along its
+ * shorter diagonal (as the referee splits them). */
+static sq_status quads_self_intersections(const sq_quad_mesh *Q, uint64_t *pairs, sq_error *err)
+{
+    uint32_t *tri = malloc(6 * ((size_t)Q->nq + 1) * sizeof *tri);
+    if (!tri) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
+    for (uint32_t q = 0; q < Q->nq; q++) {
+        const uint32_t *c = Q->quad + 4 * (size_t)q;
+        double d02 = 0, d13 = 0;
+        for (int i = 0; i < 3; i++) {
+            double a = Q->pos[3 * (size_t)c[2] + i] - Q->pos[3 * (size_t)c[0] + i];
+            double b = Q->pos[3 * (size_t)c[3] + i] - Q->pos[3 * (size_t)c[1] + i];
+            d02 += a * a, d13 += b * b;
+        }
+        int k = d02 <= d13 ? 0 : 1; /* the diagonal from corner k to k + 2 */
+        uint32_t *t = tri + 6 * (size_t)q;
+        t[0] = c[k], t[1] = c[k + 1], t[2] = c[(k + 2) % 4];
+        t[3] = c[k], t[4] = c[(k + 2) % 4], t[5] = c[(k + 3) % 4];
+    }
+    sq_status st = sq_cgal_self_intersections(Q->nv, Q->pos, 2 * Q->nq, tri, pairs, NULL, err);
+    free(tri);
+    return st;
 }
 
 void sq_remesh_result_free(sq_remesh_result *r)
@@ -176,6 +215,25 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
                           stats->untangle.folded_after, out->quads.nq);
         goto fail;
     }
+    /* 7. no quad surface through itself where the input is not */
+    t1 = sq_now();
+    stats->stage = "verify";
+    if ((st = quads_self_intersections(&out->quads, &stats->self_intersections, err))) goto fail;
+    stats->input_self_intersections = -1;
+    if (stats->self_intersections > 0) {
+        uint64_t in = 0;
+        if ((st = mesh_self_intersections(m, &in, err))) goto fail;
+        stats->input_self_intersections = (int64_t)in;
+        if (in == 0) {
+            st = sq_error_set(err, SQ_ERR_SOLVER,
+                              "%llu pairs of the quads' triangles intersect (the quad surface passes "
+                              "through itself where the input does not: quads too skewed for the "
+                              "surface's thin parts); try more optimizer iterations or more quads",
+                              (unsigned long long)stats->self_intersections);
+            goto fail;
+        }
+    }
+    stats->t_verify = sq_now() - t1;
     report(&pc, 1);
     if (opt->keep_maps) {
         out->optimized = M;

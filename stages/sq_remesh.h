@@ -15,13 +15,17 @@
  *  5. quantize: the integer-grid map at the requested size, with its own
  *     optimization step (sq_quantize);
  *  6. extract: the quad mesh (sq_extract), folded quads relaxed on the
- *     surface (sq_extract_untangle); a quad still folded fails the run.
+ *     surface (sq_extract_untangle); a quad still folded fails the run;
+ *  7. verify: the quad surface (each quad split along its shorter
+ *     diagonal) must not intersect itself where the input does not
+ *     (CGAL's exact test, sq_cgal_adapter.h); if it does, the run fails.
  *
  * Guarantees of a successful result: a closed, manifold, pure-quad mesh of
  * the input's genus whose irregular vertices are exactly the cones (a cone
  * of valence k is a vertex of k quads), every vertex on the input surface,
  * no quad folded (both triangulations positive against the surface
- * normal, as the referee tests). On failure nothing is returned, the
+ * normal, as the referee tests), and, where the input does not intersect
+ * itself, no two of the quads' triangles intersecting. On failure nothing is returned, the
  * error names the stage (sq_remesh_stats.stage) and the cause.
  *
  * The library never prints or exits. */
@@ -81,6 +85,12 @@ typedef struct sq_remesh_stats {
     sq_quantize_stats quantize;
     sq_extract_stats extract;
     sq_untangle_stats untangle;
+    uint64_t self_intersections;   /* intersecting pairs of the quads'       */
+                                   /* triangles (each quad split along its   */
+                                   /* shorter diagonal; CGAL)                */
+    int64_t input_self_intersections; /* the input's, when the quads have    */
+                                   /* some (-1: not computed)                */
+    double t_verify;               /* the self-intersection test             */
     double t_cones, t_param, t_optimize, t_quantize, t_extract, t_total; /* stage 3 in t_optimize */
 } sq_remesh_stats;
 

@@ -2,13 +2,16 @@
 # End-to-end tests of `seamquad remesh` (issue 26): a closed triangle mesh in,
 # a quad mesh out, through cones, param, optimize, quantize and extract.
 #  - examples/cube.obj with its cones and with cones from the cross field,
-#    mpz/eight with its cones (and, not under the sanitizers, mpz/helmet):
-#    the referee (shared/tools/check_quad.py MESH QUADS --cones CONES)
+#    mpz/eight with its cones: the referee (shared/tools/check_quad.py MESH QUADS --cones CONES)
 #    passes: pure quads, closed, manifold, genus, irregular vertices exactly
-#    the cones, nothing folded; the quad count within 5% of the target
+#    the cones, nothing folded, no two triangles of the quads (split along
+#    their shorter diagonals) intersecting; the quad count within 5% of the target
 #    (above the fewest the layout allows); --json complete; eight's mean
 #    |angle - 90| below 8 degrees (QuadriFlow's median at 5K quads is 7.9),
-#    the cube's too, helmet's below 60 (a guard: docs/remesh.md);
+#    the cube's too;
+#  - mpz/helmet (not under the sanitizers): the quads pass through the thin
+#    shell, so the run fails at its verify stage, naming the cause, and
+#    writes nothing (docs/remesh.md);
 #  - --picture writes an SVG view of the quads;
 #  - --keep DIR writes the cones, param's map, the optimized map and the
 #    integer-grid map, which check_param.py passes (the last with --integer);
@@ -56,7 +59,7 @@ open(sys.argv[3], "w").write("".join("%.17g\n" % (k * math.pi / 2) for k in val)
 PY
     rargs=(--cones "$out.Th_hat")
   fi
-  python3 "$quad_ref" "$mesh" "$out.obj" "${rargs[@]}" --json "$out.ref.json" >"$out.ref" 2>&1
+  python3 "$quad_ref" "$mesh" "$out.obj" "${rargs[@]}" --self-intersections --json "$out.ref.json" >"$out.ref" 2>&1
   local rc=$?
   if [ $rc -eq 0 ] && python3 - "$out.json" "$out.ref.json" "$out.obj" "$target" "$max_angle" <<'PY'; then
 import json, sys
@@ -95,9 +98,19 @@ else
   bad "--picture: $np polygons for $nq quads"
 fi
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
-  # helmet: valid, but param's map is still far from converged after the
-  # default 100 optimizer iterations (mean |angle - 90| about 48 degrees)
-  remeshes helmet "$shared/data/mpz/helmet.obj" "$shared/data/mpz/helmet_Th_hat" 5000 60
+  # helmet (a thin shell): the quads of param's map after the default
+  # optimization pass through the shell's other side; the run must fail at
+  # the verify stage (CGAL's test), name the cause and write nothing
+  "$bin" remesh "$shared/data/mpz/helmet.obj" --cones "$shared/data/mpz/helmet_Th_hat" --quads 5000 \
+    -o "$tmp/helmet.obj" --picture "$tmp/helmet.svg" --json >"$tmp/helmet.json" 2>"$tmp/helmet.err"
+  rc=$?
+  if [ $rc -eq 3 ] && grep -q "error (verify): [0-9]* pairs of the quads' triangles intersect" "$tmp/helmet.err" \
+      && [ ! -e "$tmp/helmet.obj" ] && [ ! -e "$tmp/helmet.svg" ] \
+      && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert not j["ok"] and j["error"]["stage"]=="verify" and j["verify"]["self_intersections"]>0 and j["verify"]["input_self_intersections"]==0, j' "$tmp/helmet.json"; then
+    ok; echo "PASS helmet: refused at verify: $(grep -o '[0-9]* pairs' "$tmp/helmet.err")"
+  else
+    bad "helmet: exit $rc: $(tail -1 "$tmp/helmet.err")"
+  fi
 fi
 
 # --keep: the intermediates pass the map referee

@@ -3,7 +3,8 @@
  *  - cones from the cross field and given cones: a closed pure-quad mesh
  *    whose every vertex has valence 4 except the cones (each with its
  *    valence), Euler characteristic V - E + F equal to the input's, the
- *    quad count within 5% of the target, no folded quad left, every stage
+ *    quad count within 5% of the target, no folded quad left, no two of
+ *    its triangles intersecting (the verify stage's count), every stage
  *    timed, the progress reported from 0 to 1 in order;
  *  - the kept maps: param's map exact (integer), the optimized map exact
  *    and less distorted, the integer-grid map exact and integer;
@@ -125,6 +126,8 @@ static void test_cube_field(void **state)
     assert_int_equal(st.cones, 8);
     check_quads(&mesh, &R, 600);
     assert_int_equal(st.untangle.folded_after, 0);
+    assert_int_equal(st.self_intersections, 0);
+    assert_true(st.input_self_intersections == -1);
     assert_true(st.optimize.conformal_after <= st.optimize.conformal_before);
     assert_true(log.calls >= 6 && log.backwards == 0 && fabs(log.last - 1) < 1e-12);
     assert_true(st.t_total >= st.t_param + st.t_optimize + st.t_quantize);
