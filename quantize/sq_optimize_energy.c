@@ -13,9 +13,10 @@
  *   dpsi  = 2 (1 + d^-2) g - 2 f d^-3 c
  *   d2psi = 2 (1 + d^-2) I - 4 d^-3 (g c^T + c g^T) + 6 f d^-4 c c^T
  *           - 2 f d^-3 Hd
- * The 4x4 Hessian is made positive semidefinite by clamping its negative
- * eigenvalues to zero (Jacobi rotations), then pulled back to the 6 corner
- * coordinates through G. Cost: a few hundred flops per triangle. */
+ * The 4x4 Hessian is made positive semidefinite by clamping its only
+ * eigenvalue that can be negative, the twist's, to zero (in closed form,
+ * sq_sd_grad_hess), then pulled back to the 6 corner coordinates through
+ * G. Cost: a few hundred flops per triangle. */
 #include <math.h>
 #include <string.h>
 
@@ -66,46 +67,6 @@ double sq_sd_psi(const sq_sd_face *F, const double uv[6])
     return f * (1.0 + 1.0 / (d * d));
 }
 
-/* Eigen-decomposition of a symmetric 4x4 matrix by cyclic Jacobi
- * rotations: A = V diag(w) V^T (V's columns are the eigenvectors). */
-static void jacobi4(double A[4][4], double w[4], double V[4][4])
-{
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) V[i][j] = i == j;
-    for (int sweep = 0; sweep < 50; sweep++) {
-        double off = 0, on = 0;
-        for (int i = 0; i < 4; i++)
-            for (int j = 0; j < 4; j++) {
-                if (i == j) on += A[i][j] * A[i][j];
-                else off += A[i][j] * A[i][j];
-            }
-        if (off <= 1e-30 * on) break;
-        for (int p = 0; p < 3; p++)
-            for (int q = p + 1; q < 4; q++) {
-                if (A[p][q] == 0) continue;
-                double theta = (A[q][q] - A[p][p]) / (2 * A[p][q]);
-                double t = (theta >= 0 ? 1 : -1) / (fabs(theta) + sqrt(theta * theta + 1));
-                double c = 1 / sqrt(t * t + 1), s = t * c;
-                for (int k = 0; k < 4; k++) {
-                    double akp = A[k][p], akq = A[k][q];
-                    A[k][p] = c * akp - s * akq;
-                    A[k][q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < 4; k++) {
-                    double apk = A[p][k], aqk = A[q][k];
-                    A[p][k] = c * apk - s * aqk;
-                    A[q][k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < 4; k++) {
-                    double vkp = V[k][p], vkq = V[k][q];
-                    V[k][p] = c * vkp - s * vkq;
-                    V[k][q] = s * vkp + c * vkq;
-                }
-            }
-    }
-    for (int i = 0; i < 4; i++) w[i] = A[i][i];
-}
-
 double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, double g[6],
                        double H[36])
 {
@@ -128,16 +89,26 @@ double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, d
     /* Hd: d = J0 J3 - J1 J2 */
     A[0][3] -= 2 * f * id3, A[3][0] -= 2 * f * id3;
     A[1][2] += 2 * f * id3, A[2][1] += 2 * f * id3;
-    double w[4], V[4][4];
-    jacobi4(A, w, V);
+    /* Projection onto the positive semidefinite matrices, analytically:
+     * psi is isotropic, so its Hessian's eigenvectors are two scaling
+     * modes, a flip and a twist (Smith, de Goes and Kim 2019). With
+     * psi = sum_i s_i^2 + s_i^-2 the scaling eigenvalues 2 + 6 s_i^-4 and
+     * the flip's 2 + 2 (s1^2 + s1 s2 + s2^2) / (s1 s2)^3 are positive; only
+     * the twist's, (psi_1 + psi_2) / (s1 + s2) = 2 - 2 (f - d) / d^3, can be
+     * negative. Its eigenvector is J's rotation part turned by 90 degrees:
+     * vec(Rot(a + pi/2)) / sqrt(2), a = atan2(J10 - J01, J00 + J11). So the
+     * projection adds -lambda t t^T where lambda < 0. */
     double P[4][4];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++)
-                if (w[k] > 0) s += V[i][k] * w[k] * V[j][k];
-            P[i][j] = s;
-        }
+    memcpy(P, A, sizeof P);
+    double lambda = 2.0 - 2.0 * (f - d) * id3;
+    if (lambda < 0) {
+        double e = 0.5 * (J[0] + J[3]), h = 0.5 * (J[2] - J[1]), r = hypot(e, h);
+        double c = e / r, sn = h / r;
+        const double k = 0.70710678118654752440; /* 1 / sqrt(2) */
+        double t[4] = {-sn * k, -c * k, c * k, -sn * k};
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) P[i][j] -= lambda * t[i] * t[j];
+    }
     /* pull back: coordinate (c, a) is uv index 2c + a; dJ[2a+b]/duv[2c+a] = G[c][b] */
     double s = weight * F->area;
     for (int cc = 0; cc < 3; cc++)

@@ -2,7 +2,9 @@
  * sq_uv_basis.c):
  *  - the per-triangle energy: 4 at an isometry with zero gradient; the
  *    gradient matches central differences of psi; the projected Hessian is
- *    symmetric positive semidefinite; the largest safe step degenerates the
+ *    symmetric positive semidefinite and equals the numerical projection
+ *    (central differences of the gradient, Jacobi eigen-decomposition,
+ *    negative eigenvalues set to zero); the largest safe step degenerates the
  *    triangle exactly there;
  *  - the fixed-transition basis reproduces the map at z0 and keeps every
  *    seam for any z;
@@ -388,6 +390,90 @@ static void test_param_igm(void **state)
     unload(&md);
 }
 
+/* Eigen-decomposition of a symmetric 4x4 matrix by cyclic Jacobi rotations
+ * (the reference for the optimizer's closed-form projection) */
+static void jacobi4(double A[4][4], double w[4], double V[4][4])
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) V[i][j] = i == j;
+    for (int sweep = 0; sweep < 60; sweep++) {
+        for (int p = 0; p < 3; p++)
+            for (int q = p + 1; q < 4; q++) {
+                if (A[p][q] == 0) continue;
+                double th = (A[q][q] - A[p][p]) / (2 * A[p][q]);
+                double t = (th >= 0 ? 1 : -1) / (fabs(th) + sqrt(th * th + 1));
+                double c = 1 / sqrt(t * t + 1), sn = t * c;
+                for (int k = 0; k < 4; k++) {
+                    double a = A[k][p], b = A[k][q];
+                    A[k][p] = c * a - sn * b, A[k][q] = sn * a + c * b;
+                }
+                for (int k = 0; k < 4; k++) {
+                    double a = A[p][k], b = A[q][k];
+                    A[p][k] = c * a - sn * b, A[q][k] = sn * a + c * b;
+                }
+                for (int k = 0; k < 4; k++) {
+                    double a = V[k][p], b = V[k][q];
+                    V[k][p] = c * a - sn * b, V[k][q] = sn * a + c * b;
+                }
+            }
+    }
+    for (int i = 0; i < 4; i++) w[i] = A[i][i];
+}
+
+/* The closed-form projection of the Hessian (sq_sd_grad_hess) against a
+ * numerical one: on the unit right triangle with corner 0 at the origin the
+ * UVs of corners 1 and 2 are J's columns, so the 4x4 block of H for them is
+ * the projected Hessian in J (area 1/2 times it). The exact Hessian comes
+ * from central differences of the analytic gradient, its projection from
+ * Jacobi rotations with negative eigenvalues set to 0. */
+static void test_hessian_projection(void **state)
+{
+    (void)state;
+    double p0[3] = {0, 0, 0}, p1[3] = {1, 0, 0}, p2[3] = {0, 1, 0};
+    sq_sd_face F;
+    assert_int_equal(sq_sd_prepare(p0, p1, p2, 1.0, &F), 1);
+    /* uv index 2..5 <-> J entries 00, 10, 01, 11 (vec order 0, 2, 1, 3) */
+    static const int vj[4] = {0, 2, 1, 3};
+    int negative = 0, tried = 0;
+    for (int trial = 0; trial < 400; trial++) {
+        double uv[6] = {0, 0, 1 + 0.8 * rnd(), 0.8 * rnd(), 0.8 * rnd(), 1 + 0.8 * rnd()};
+        if (trial % 3 == 0) uv[3] *= 0.1, uv[4] *= 3; /* more anisotropic */
+        if (!isfinite(sq_sd_psi(&F, uv)) || sq_sd_psi(&F, uv) > 1e3) continue;
+        tried++;
+        double g[6], H[36], A[4][4];
+        sq_sd_grad_hess(&F, uv, 1.0, g, H);
+        for (int i = 0; i < 4; i++) {
+            double a[6], b[6], ga[6], gb[6], Ha[36];
+            memcpy(a, uv, sizeof a), memcpy(b, uv, sizeof b);
+            double h = 1e-6;
+            a[2 + i] += h, b[2 + i] -= h;
+            sq_sd_grad_hess(&F, a, 1.0, ga, Ha);
+            sq_sd_grad_hess(&F, b, 1.0, gb, Ha);
+            for (int j = 0; j < 4; j++) A[vj[i]][vj[j]] = (ga[2 + j] - gb[2 + j]) / (2 * h) / F.area;
+        }
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < i; j++) A[i][j] = A[j][i] = 0.5 * (A[i][j] + A[j][i]);
+        double w[4], V[4][4];
+        jacobi4(A, w, V);
+        double scale = 0;
+        for (int k = 0; k < 4; k++) {
+            if (w[k] < 0) negative++;
+            scale = fmax(scale, fabs(w[k]));
+        }
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) {
+                double ref = 0;
+                for (int k = 0; k < 4; k++)
+                    if (w[k] > 0) ref += V[vj[i]][k] * w[k] * V[vj[j]][k];
+                double got = H[(2 + i) * 6 + 2 + j] / F.area;
+                if (!(fabs(got - ref) <= 1e-5 * scale))
+                    fail_msg("projected Hessian entry (%d, %d): %.10g, numerically %.10g (scale %g)", i, j, got, ref, scale);
+            }
+    }
+    /* both cases occur: some Hessians needed the projection, most not */
+    assert_true(tried > 200 && negative > 10);
+}
+
 /* J of the map uv over the face F (as sq_optimize_energy.c computes it) */
 static void face_jacobian(const sq_sd_face *F, const double uv[6], double J[4])
 {
@@ -483,6 +569,7 @@ int main(void)
         cmocka_unit_test(test_max_step),         cmocka_unit_test(test_basis_fixed),
         cmocka_unit_test(test_optimize_igm),     cmocka_unit_test(test_refuses_bad_map),
         cmocka_unit_test(test_param_igm),        cmocka_unit_test(test_reference),
+        cmocka_unit_test(test_hessian_projection),
         cmocka_unit_test(test_progressive_param),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
