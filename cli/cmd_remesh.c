@@ -156,8 +156,10 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
            "              references), %.2f s: %s\n",
            s->optimize.conformal_before, s->optimize.conformal_after, s->optimize.iterations,
            s->optimize.reference_iterations, s->t_optimize, s->optimize.why);
-    printf("simplify      %u rounds removed %u added vertices: %u -> %u faces\n", s->optimize.rounds,
-           s->optimize.removed, s->optimize.faces_before, s->optimize.faces_after);
+    printf("simplify      %u rounds (%u with the translations fixed) removed %u added vertices:\n"
+           "              %u -> %u faces\n",
+           s->optimize.rounds, s->optimize.fixed_rounds, s->optimize.removed, s->optimize.faces_before,
+           s->optimize.faces_after);
     printf("quantize      %.0f quads", s->quantize.quads);
     if (s->quantize.min_quads > 0 && s->quantize.quads > 0 && s->quantize.min_quads >= s->quantize.quads)
         printf(" (the fewest this layout allows)");
@@ -187,9 +189,10 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     printf(",\n  \"param\": {\"faces\": %u, \"steiner\": %u, \"attempts\": %u, \"seconds\": %.6f}",
            s->param.faces_out, s->param.steiner, s->param.attempts, s->t_param);
     printf(",\n  \"optimize\": {\"iterations\": %u, \"reference_iterations\": %u, \"rounds\": %u, "
-           "\"removed\": %u, \"faces_before\": %u, \"faces_after\": %u, \"conformal_before\": ",
-           s->optimize.iterations, s->optimize.reference_iterations, s->optimize.rounds, s->optimize.removed,
-           s->optimize.faces_before, s->optimize.faces_after);
+           "\"fixed_rounds\": %u, \"removed\": %u, \"faces_before\": %u, \"faces_after\": %u, "
+           "\"conformal_before\": ",
+           s->optimize.iterations, s->optimize.reference_iterations, s->optimize.rounds,
+           s->optimize.fixed_rounds, s->optimize.removed, s->optimize.faces_before, s->optimize.faces_after);
     sq_json_double(stdout, s->optimize.conformal_before);
     printf(", \"conformal_after\": ");
     sq_json_double(stdout, s->optimize.conformal_after);

@@ -755,7 +755,7 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
     }
     use_faces(&X, 0);
     double after_max = 0, after = energy(&X, M->he_uv, &after_max);
-    if (!(after < rep->energy_before)) {
+    if (!(after < rep->energy_before) && !(opt->keep_last && isfinite(after))) {
         /* the snapped map (free translations) is not the iterate: never
          * return a map that is worse by the energy the report states */
         memcpy(M->he_uv, orig, nc * sizeof *orig);

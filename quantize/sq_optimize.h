@@ -55,6 +55,12 @@ typedef struct sq_optimize_options {
      * (sq_optimize.c, PROG_PATIENCE): 0 gives SQ_OPTIMIZE_REFERENCE_BOUND;
      * INFINITY (or any value <= 4) turns them off */
     double reference_bound;
+    /* 1: the last iterate is returned (if it passes the exact check) even
+     * when its energy against the surface is above the input's, as it may
+     * be after a few iterations with progressive references; for callers
+     * that run the optimizer in rounds (sq_remesh_optimize). Default 0:
+     * never worse. */
+    int keep_last;
     /* called after every iteration (may be NULL): a progress hook */
     void (*progress)(void *user, uint32_t iteration, double energy, double step);
     void *user;

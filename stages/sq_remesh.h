@@ -68,6 +68,8 @@ typedef struct sq_remesh_optimize_report {
     uint32_t iterations;           /* optimizer iterations, all rounds       */
     uint32_t reference_iterations; /* of them, with progressive references   */
     uint32_t rounds;               /* simplifications run                    */
+    uint32_t fixed_rounds;         /* rounds run with the translations fixed */
+                                   /* (free ones failed the exact check)     */
     uint32_t removed;              /* vertices they removed                  */
     uint32_t faces_before, faces_after;
     double conformal_before, conformal_after; /* area-weighted mean          */
