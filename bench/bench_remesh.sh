@@ -16,7 +16,8 @@
 # Every output goes through shared/tools/check_quad.py (--cones for ours when
 # a cone file is given). One markdown row per tool, mesh and target: quads,
 # valid (PASS/FAIL of the referee: closed, manifold, genus, pure quads,
-# nothing folded, and for ours the irregular vertices = the cones), the
+# nothing folded, no self-intersection, and for ours the irregular vertices
+# = the cones), the
 # irregular vertex count, mean |angle - 90|, min angle, min scaled
 # Jacobian, the largest distance both ways relative to the diagonal, wall
 # time and peak memory (GNU time).
@@ -29,7 +30,8 @@ targets=${SQ_BENCH_TARGETS:-5000}
 iter=${SQ_BENCH_ITER:-}
 models=("$@")
 if [ ${#models[@]} = 0 ]; then
-  for m in block cup eight elk fandisk femur fertility_tri genus3 helmet holes3 homer knot1 rocker_arm sculpt trim-star; do
+  # smallest param maps first (the larger take minutes each)
+  for m in eight knot1 helmet sculpt holes3 cup block genus3 fandisk fertility_tri femur rocker_arm trim-star homer elk; do
     models+=("mpz/$m.obj:${m}_Th_hat")
   done
 fi
@@ -40,7 +42,7 @@ trap 'rm -rf "$tmp"' EXIT
 referee() {
   local args=("$1" "$2")
   [ -n "${3:-}" ] && args+=(--cones "$3")
-  python3 "$shared/tools/check_quad.py" "${args[@]}" --json "$tmp/ref.json" >/dev/null 2>&1
+  python3 "$shared/tools/check_quad.py" "${args[@]}" --self-intersections --json "$tmp/ref.json" >/dev/null 2>&1
   local rc=$?
   python3 - "$tmp/ref.json" "$rc" <<'PY'
 import json, sys
