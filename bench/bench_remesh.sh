@@ -66,7 +66,8 @@ timed() {
   shift
   /usr/bin/time -f "%e %M" -o "$pre.time" "$@" >"$pre.out" 2>"$pre.err"
   local rc=$?
-  read -r secs kb <"$pre.time" 2>/dev/null || { secs=- kb=0; }
+  read -r secs kb < <(tail -1 "$pre.time" 2>/dev/null) || true
+  case "$secs$kb" in *[!0-9.]*|"") secs=- kb=0 ;; esac
   echo "$rc $secs $((kb / 1024))"
 }
 

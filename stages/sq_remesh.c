@@ -218,11 +218,15 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     /* 7. no quad surface through itself where the input is not */
     t1 = sq_now();
     stats->stage = "verify";
-    if ((st = quads_self_intersections(&out->quads, &stats->self_intersections, err))) goto fail;
+    st = quads_self_intersections(&out->quads, &stats->self_intersections, err);
     stats->input_self_intersections = -1;
+    stats->t_verify = sq_now() - t1;
+    if (st) goto fail;
     if (stats->self_intersections > 0) {
         uint64_t in = 0;
-        if ((st = mesh_self_intersections(m, &in, err))) goto fail;
+        st = mesh_self_intersections(m, &in, err);
+        stats->t_verify = sq_now() - t1;
+        if (st) goto fail;
         stats->input_self_intersections = (int64_t)in;
         if (in == 0) {
             st = sq_error_set(err, SQ_ERR_SOLVER,
