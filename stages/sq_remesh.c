@@ -210,8 +210,8 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     if (stats->untangle.folded_after > 0) {
         st = sq_error_set(err, SQ_ERR_SOLVER,
                           "%u of %u quads stay folded over the surface after untangling (the "
-                          "integer-grid map is too distorted there); try more optimizer "
-                          "iterations or another quad count",
+                          "integer-grid map is too distorted there); more optimizer "
+                          "iterations may help",
                           stats->untangle.folded_after, out->quads.nq);
         goto fail;
     }
@@ -232,7 +232,8 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
             st = sq_error_set(err, SQ_ERR_SOLVER,
                               "%llu pairs of the quads' triangles intersect (the quad surface passes "
                               "through itself where the input does not: quads too skewed for the "
-                              "surface's thin parts); try more optimizer iterations or more quads",
+                              "surface's thin parts or near the cones); more optimizer iterations "
+                              "may help",
                               (unsigned long long)stats->self_intersections);
             goto fail;
         }
