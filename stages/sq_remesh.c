@@ -5,9 +5,11 @@
  * own map exactly, stage 3 re-checks it as an sq_map, the optimizer and the
  * quantizer return maps that pass sq_map_check (the integer-grid map with
  * SQ_MAP_REQUIRE_INTEGER), and the extraction builds its mesh only from a
- * valid integer-grid map. What no stage checks is a quad folded in 3D (its
- * corners lie on the surface but the quad turns over it): the untangling
- * step relaxes such quads and any left fail the run.
+ * valid integer-grid map. Two things no stage before checks: a quad folded
+ * in 3D (its corners lie on the surface but the quad turns over it), which
+ * the untangling step relaxes, any left failing the run; and quads through
+ * each other or through a thin part of the surface, which the verify stage
+ * finds with CGAL's exact test and refuses.
  *
  * Cost: dominated by the optimizer (stage 4: one sparse Cholesky per
  * iteration on about twice the vertices of param's refinement) and by
@@ -23,7 +25,8 @@
 #include "sq_cones.h"
 
 /* The share of the whole run each stage is given in the progress report
- * (measured proportions on the mpz models at 5K quads, rounded). */
+ * (rough proportions on the mpz models at 5K quads: the optimizer's rounds
+ * dominate). */
 #define SHARE_CONES 0.03
 #define SHARE_PARAM 0.17
 #define SHARE_OPTIMIZE 0.60
