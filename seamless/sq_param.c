@@ -3239,7 +3239,7 @@ static sq_status build_walled(const sq_mesh *m, const int32_t *valence, const sq
  * metapolygon is as near to both its edges), and which edge takes the
  * cone changes the whole domain after it: the overlay's crossings on
  * mpz/elk went from 0.66 to 3.1 million over 10 ways of breaking the ties
- * (session 16, docs/param.md). So where the overlay's sample expects more
+ * (docs/param.md). So where the overlay's sample expects more
  * than SQ_VARIANT_PER_FACE crossings per input face, the attempt gives
  * that domain up (about 1/16 of the walk's time) and builds the next
  * variant (sq_guide_glue.variant: another tie order), up to

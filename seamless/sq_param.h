@@ -167,9 +167,8 @@ enum { SQ_FANS_ON = 0, SQ_FANS_OFF = 1 };
  *    Steiner vertex; where that fails, as SQ_TREE_SURFACE. Experimental:
  *    it makes mpz/elk pass with the overlay (docs/param.md);
  *  SQ_TREE_PAIR_EXACT: the same, but where the exact copy fails the
- *    attempt fails (SQ_ERR_SOLVER): the genus-1 fallback's choice until
- *    session 11, whose overlay has no chance on the surface tree's winding
- *    paths;
+ *    attempt fails (SQ_ERR_SOLVER) instead of falling back to the surface
+ *    tree, whose winding paths leave the overlay no chance;
  *  SQ_TREE_QTRI: seed 9.4 as the seed does it: the surface tree copied
  *    into Q triangulated, room made by edge splits along the paths only
  *    (sq_qtri.h), Omega laid out from it (triangles, dyadic positions) and
