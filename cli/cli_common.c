@@ -1,10 +1,13 @@
 #include "cli_common.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #include <string.h>
 
 #include "sq_cones.h"
+#include "sq_extract.h"
+#include "sq_io.h"
 
 void sq_json_string(FILE *f, const char *s)
 {
@@ -80,4 +83,14 @@ void sq_cli_name_file(sq_error *err, const char *path)
     char msg[SQ_ERROR_MSG_MAX];
     snprintf(msg, sizeof msg, "%s", err->msg);
     sq_error_set(err, err->code, "%s: %s", path, msg);
+}
+
+sq_status sq_cli_write_quads(const char *path, const sq_quad_mesh *Q, sq_error *err)
+{
+    uint32_t *off = malloc(((size_t)Q->nq + 1) * sizeof *off);
+    if (!off) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    for (uint32_t f = 0; f <= Q->nq; f++) off[f] = 4 * f;
+    sq_status st = sq_write_obj(path, Q->nv, Q->pos, Q->nq, off, Q->quad, 0, NULL, NULL, err);
+    free(off);
+    return st;
 }

@@ -254,7 +254,6 @@ int sq_cmd_extract(int argc, char **argv)
     memset(&M, 0, sizeof M);
     sq_quad_mesh Q;
     memset(&Q, 0, sizeof Q);
-    uint32_t *off = NULL;
     int32_t *valence = NULL;
     const char *stage = "read";
     double t0 = sq_now();
@@ -303,20 +302,13 @@ int sq_cmd_extract(int argc, char **argv)
         }
         stage = "write";
         double t1 = sq_now();
-        off = malloc(((size_t)Q.nq + 1) * sizeof *off);
-        if (!off) {
-            st = sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
-        } else {
-            for (uint32_t f = 0; f <= Q.nq; f++) off[f] = 4 * f;
-            st = sq_write_obj(r.out_path, Q.nv, Q.pos, Q.nq, off, Q.quad, 0, NULL, NULL, &err);
-        }
+        st = sq_cli_write_quads(r.out_path, &Q, &err);
         r.t_write = sq_now() - t1;
     }
     r.t_total = sq_now() - t0;
     if (json) print_json(&r, st, stage, err.msg);
     else if (!st && !quiet) print_text(&r);
     if (st) fprintf(stderr, "seamquad extract: error (%s): %s\n", stage, err.msg);
-    free(off);
     free(valence);
     sq_quad_mesh_free(&Q);
     sq_map_free(&M);

@@ -117,16 +117,6 @@ static sq_status probe_output(const char *path, sq_error *err)
     return st;
 }
 
-static sq_status write_quads(const char *path, const sq_quad_mesh *Q, sq_error *err)
-{
-    uint32_t *off = malloc(((size_t)Q->nq + 1) * sizeof *off);
-    if (!off) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    for (uint32_t f = 0; f <= Q->nq; f++) off[f] = 4 * f;
-    sq_status st = sq_write_obj(path, Q->nv, Q->pos, Q->nq, off, Q->quad, 0, NULL, NULL, err);
-    free(off);
-    return st;
-}
-
 /* The intermediates into dir; on failure none is left. */
 static sq_status write_keep(const char *dir, uint32_t nv, const sq_remesh_result *R, sq_error *err)
 {
@@ -352,7 +342,7 @@ int sq_cmd_remesh(int argc, char **argv)
     }
     if (!st) {
         stage = "write";
-        st = write_quads(out_path, &R.quads, &err);
+        st = sq_cli_write_quads(out_path, &R.quads, &err);
         if (!st && picture) {
             char title[256];
             snprintf(title, sizeof title, "%s: %u quads, %u irregular vertices (the cones)", mesh_path, R.quads.nq,

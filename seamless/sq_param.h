@@ -37,6 +37,7 @@
 
 #include "sq_error.h"
 #include "sq_mesh.h"
+#include "sq_soup.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -340,6 +341,11 @@ sq_status sq_param_simplify(const sq_mesh *m, sq_param *P, uint32_t *removed, sq
  * the result does not depend on threads. */
 sq_status sq_param_simplify_threads(const sq_mesh *m, sq_param *P, uint32_t threads, uint32_t *removed,
                                     sq_error *err);
+
+/* P's triangles as a soup that views P's arrays (positions, triangles, UV
+ * points and corners; nothing copied) with its own face offsets, which the
+ * caller frees (free(s->face_off)). SQ_ERR_NOMEM only. */
+sq_status sq_param_soup(const sq_param *P, sq_soup *s, sq_error *err);
 
 /* Writes P as OBJ (v, vt, f a/ta b/tb c/tc), atomically (no partial file on
  * error). */

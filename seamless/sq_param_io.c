@@ -130,22 +130,33 @@ static sq_status check_arrays(const sq_param *P, const char *who, sq_error *err)
     return SQ_OK;
 }
 
+sq_status sq_param_soup(const sq_param *P, sq_soup *s, sq_error *err)
+{
+    memset(s, 0, sizeof *s);
+    uint32_t *off = malloc(((size_t)P->nf + 1) * sizeof *off);
+    if (!off) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (soup of %" PRIu32 " faces)", P->nf);
+    for (uint32_t f = 0; f <= P->nf; f++) off[f] = 3 * f;
+    s->nv = P->nv;
+    s->pos = P->pos;
+    s->nf = P->nf;
+    s->face_off = off;
+    s->face_idx = P->tri;
+    s->nuv = P->nuv;
+    s->uv = P->uv;
+    s->face_uv = P->tri_uv;
+    return SQ_OK;
+}
+
 sq_status sq_param_mesh(const sq_param *P, const char *who, sq_mesh *m, sq_error *err)
 {
     memset(m, 0, sizeof *m);
-    uint32_t *off = malloc(((size_t)P->nf + 1) * sizeof *off);
-    if (!off) return sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
-    for (uint32_t f = 0; f <= P->nf; f++) off[f] = 3 * f;
     sq_soup s;
-    memset(&s, 0, sizeof s);
-    s.nv = P->nv;
-    s.pos = P->pos;
-    s.nf = P->nf;
-    s.face_off = off;
-    s.face_idx = P->tri;
+    if (sq_param_soup(P, &s, err)) return sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", who);
+    /* the mesh only: no UVs */
+    s.nuv = 0, s.uv = NULL, s.face_uv = NULL;
     sq_error e2;
     sq_status st = sq_mesh_from_soup(&s, SQ_MESH_SKIP_DEGENERATE, m, &e2);
-    free(off);
+    free(s.face_off);
     if (st == SQ_ERR_NOMEM) return sq_error_set(err, st, "%s: out of memory", who);
     if (st) return sq_error_set(err, SQ_ERR_INTERNAL, "%s: the mesh is not a valid closed surface: %s", who, e2.msg);
     return SQ_OK;

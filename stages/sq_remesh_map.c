@@ -1,8 +1,8 @@
 /* seamquad: param's result as an exact sq_map (sq_remesh.h, stage 3), and
  * the conformal ratio of a map.
  *
- * The soup is param's own arrays (positions, triangles, UV corners), read
- * without copying; sq_map_from_soup with SQ_MAP_REQUIRE_EXACT checks that
+ * The soup is param's own arrays (sq_param_soup: positions, triangles, UV
+ * corners), read without copying; sq_map_from_soup with SQ_MAP_REQUIRE_EXACT checks that
  * every seam is exact as param promises (nothing is snapped), that the
  * first vertices are the input's and that the angle sums are the cones. */
 #include <math.h>
@@ -16,21 +16,11 @@ sq_status sq_remesh_param_map(const sq_param *P, const sq_mesh *m, const int32_t
 {
     memset(out, 0, sizeof *out);
     if (!P || !m || !P->nf) return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_remesh_param_map: no map");
-    uint32_t *off = malloc(((size_t)P->nf + 1) * sizeof *off);
-    if (!off) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (map of %u faces)", P->nf);
-    for (uint32_t f = 0; f <= P->nf; f++) off[f] = 3 * f;
     sq_soup s;
-    memset(&s, 0, sizeof s);
-    s.nv = P->nv;
-    s.pos = P->pos;
-    s.nf = P->nf;
-    s.face_off = off;
-    s.face_idx = P->tri;
-    s.nuv = P->nuv;
-    s.uv = P->uv;
-    s.face_uv = P->tri_uv;
-    sq_status st = sq_map_from_soup(&s, m, valence, 0, SQ_MAP_REQUIRE_EXACT, out, NULL, err);
-    free(off);
+    sq_status st = sq_param_soup(P, &s, err);
+    if (st) return st;
+    st = sq_map_from_soup(&s, m, valence, 0, SQ_MAP_REQUIRE_EXACT, out, NULL, err);
+    free(s.face_off);
     return st;
 }
 
