@@ -9,8 +9,6 @@
 #include "sq_error.h"
 #include "sq_mesh.h"
 
-#define SQ_VERSION_STRING "0.1.0"
-
 /* Exit codes shared by every subcommand. */
 enum {
     SQ_EXIT_OK = 0,

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli_common.h"
+#include "sq_version.h"
 
 typedef struct subcommand {
     const char *name;
@@ -32,7 +33,7 @@ static void usage(FILE *f)
             "usage: seamquad COMMAND [ARGS]   (seamquad COMMAND --help for details)\n"
             "\n"
             "commands:\n",
-            SQ_VERSION_STRING);
+            sq_version());
     for (size_t i = 0; i < NCOMMANDS; i++)
         fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].summary);
     fprintf(f,
@@ -62,7 +63,7 @@ int main(int argc, char **argv)
         return SQ_EXIT_OK;
     }
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "-V")) {
-        printf("seamquad %s\n", SQ_VERSION_STRING);
+        printf("seamquad %s\n", sq_version());
         return SQ_EXIT_OK;
     }
     for (size_t i = 0; i < NCOMMANDS; i++) {
