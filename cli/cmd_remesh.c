@@ -13,13 +13,15 @@
 #include "sq_mesh.h"
 #include "sq_quad_svg.h"
 #include "sq_remesh.h"
+#include "sq_subdiv.h"
 
 static void help(FILE *f)
 {
     fprintf(f,
             "usage: seamquad remesh MESH -o QUADS.obj [--cones FILE] [--quads N | --edge-length L]\n"
-            "                       [--iterations N] [--seed S] [--keep DIR] [--picture VIEW.svg]\n"
-            "                       [--json] [--quiet]\n"
+            "                       [--smooth on|off] [--step OUT.step] [--iges OUT.igs]\n"
+            "                       [--limit OUT.obj [--level K]] [--iterations N] [--seed S]\n"
+            "                       [--keep DIR] [--picture VIEW.svg] [--json] [--quiet]\n"
             "\n"
             "Turns the closed triangle mesh MESH (OBJ, OFF or PLY) into a closed, pure-quad\n"
             "mesh whose irregular vertices are exactly the cones, every vertex on MESH.\n"
@@ -36,9 +38,15 @@ static void help(FILE *f)
             "  quantize  the integer-grid map at the size asked (`seamquad quantize`)\n"
             "  extract   the quad mesh of its integer grid; quads folded over the\n"
             "            surface are relaxed, and any left fail the run\n"
+            "  smooth    the vertices moved on MESH toward right angles and even edges\n"
+            "            (`seamquad smooth`); no step folds a quad, and the unsmoothed\n"
+            "            quads are kept where the smoothed ones would fail verify\n"
             "  verify    the quads, each split along its shorter diagonal, must not\n"
             "            intersect each other where the input does not intersect\n"
             "            itself (CGAL's exact test); if they do, the run fails\n"
+            "  export    with --step, --iges or --limit: the quads' Catmull-Clark\n"
+            "            surface (OpenSubdiv) as B-spline patches or a limit mesh, as\n"
+            "            `seamquad subdiv` writes them\n"
             "\n"
             "Guarantees of QUADS.obj (written only when all hold): only quads, closed,\n"
             "manifold, MESH's genus, the irregular vertices exactly the cones (a cone\n"
@@ -57,6 +65,11 @@ static void help(FILE *f)
             "  --quads N            about N quads (default 5000; 1 <= N <= 1e8); below the\n"
             "                       fewest the cones' layout allows, that fewest\n"
             "  --edge-length L      quad edges of about L on the surface instead\n"
+            "  --smooth on|off      the smoothing stage (default on)\n"
+            "  --step OUT.step      the subdivision surface as STEP AP214 B-spline patches\n"
+            "  --iges OUT.igs       the same as IGES 5.3 (entity 128 per patch)\n"
+            "  --limit OUT.obj      the limit surface as a quad mesh with normals\n"
+            "  --level K            its grid per quad, 2^K x 2^K (0..8, default 3)\n"
             "  --iterations N       optimizer iterations at most (default 200; it stops\n"
             "                       sooner where the map converges; more lower the\n"
             "                       distortion further, at about 0.2 s per iteration\n"
@@ -77,7 +90,7 @@ static void help(FILE *f)
             "\n"
             "example:\n"
             "  seamquad remesh ../shared/data/mpz/eight.obj --cones ../shared/data/mpz/eight_Th_hat \\\n"
-            "      --quads 5000 -o eight.quads.obj\n");
+            "      --quads 5000 -o eight.quads.obj --step eight.step\n");
 }
 
 typedef struct progress_state {
@@ -135,8 +148,44 @@ static sq_status write_keep(const char *dir, uint32_t nv, const sq_remesh_result
     return st;
 }
 
+/* The export stage: the quads' Catmull-Clark surface, computed whole
+ * before any file is written. */
+typedef struct surface {
+    sq_mesh mesh;        /* the quads as a halfedge mesh             */
+    sq_subdiv S;
+    sq_limit_mesh lm;    /* with --limit                             */
+    double seconds;
+} surface;
+
+static sq_status build_surface(const sq_quad_mesh *Q, int level, surface *out, sq_error *err)
+{
+    double t0 = sq_now();
+    sq_soup soup;
+    memset(&soup, 0, sizeof soup);
+    soup.nv = Q->nv;
+    soup.pos = Q->pos;
+    soup.nf = Q->nq;
+    soup.face_idx = Q->quad;
+    soup.face_off = malloc(((size_t)Q->nq + 1) * sizeof *soup.face_off);
+    if (!soup.face_off) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (export)");
+    for (uint32_t f = 0; f <= Q->nq; f++) soup.face_off[f] = 4 * f;
+    sq_status st = sq_mesh_from_soup(&soup, SQ_MESH_ALLOW_POLYGONS, &out->mesh, err);
+    free(soup.face_off);
+    if (!st) st = sq_subdiv_build(&out->mesh, SQ_SUBDIV_DEFAULT_ISOLATION, &out->S, err);
+    if (!st && level >= 0) st = sq_subdiv_limit_mesh(&out->S, &out->mesh, level, &out->lm, err);
+    out->seconds = sq_now() - t0;
+    return st;
+}
+
+static void surface_free(surface *s)
+{
+    sq_limit_mesh_free(&s->lm);
+    sq_subdiv_free(&s->S);
+    sq_mesh_free(&s->mesh);
+}
+
 static void print_text(const char *mesh_path, const char *out_path, const sq_mesh *m,
-                       const sq_remesh_result *R, const sq_remesh_stats *s)
+                       const sq_remesh_result *R, const sq_remesh_stats *s, const surface *surf)
 {
     printf("mesh          %s: %u vertices, %u faces, genus %lld\n", mesh_path, m->nv, m->nf,
            (long long)sq_mesh_genus(m));
@@ -157,17 +206,30 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
     printf(", T-mesh of %u rectangles, %.2f s\n", s->quantize.faces, s->t_quantize);
     printf("extract       %u quads, %u vertices, %u irregular; %u folded quads relaxed; %.2f s\n",
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before, s->t_extract);
+    if (s->smoothed)
+        printf("smooth        mean |angle-90| %.2f -> %.2f degrees, min angle %.1f -> %.1f, %d iterations,\n"
+               "              %.2f s\n",
+               s->smooth.before.angle_mean_dev_deg, s->smooth.after.angle_mean_dev_deg,
+               s->smooth.before.angle_min_deg, s->smooth.after.angle_min_deg, s->smooth.iterations,
+               s->t_smooth);
+    else if (s->smooth_reverted)
+        printf("smooth        not kept (%s), %.2f s\n", s->smooth_why, s->t_smooth);
+    else
+        printf("smooth        off\n");
     printf("verified      pure quads, closed, manifold, the irregular vertices exactly the cones,\n"
            "              every vertex on the surface, no quad folded; %llu intersecting triangle\n"
            "              pairs (CGAL, each quad split along its shorter diagonal), %.2f s\n",
            (unsigned long long)s->self_intersections, s->t_verify);
-    printf("time          total %.2f s\n", s->t_total);
+    if (surf->S.np)
+        printf("export        %u B-spline patches of the Catmull-Clark surface, %.2f s\n", surf->S.np,
+               surf->seconds);
+    printf("time          total %.2f s\n", s->t_total + surf->seconds);
     printf("wrote         %s\n", out_path);
 }
 
 static void print_json(sq_status st, const char *mesh_path, const char *out_path, const sq_mesh *m,
-                       const sq_remesh_result *R, const sq_remesh_stats *s, const char *stage,
-                       const char *msg)
+                       const sq_remesh_result *R, const sq_remesh_stats *s, const surface *surf,
+                       const char *stage, const char *msg)
 {
     printf("{\n  \"ok\": %s,\n  \"mesh\": ", st == SQ_OK ? "true" : "false");
     sq_json_string(stdout, mesh_path);
@@ -196,11 +258,22 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
            "\"folded_after\": %u, \"seconds\": %.6f}",
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before,
            s->untangle.folded_after, s->t_extract);
+    printf(",\n  \"smooth\": {\"smoothed\": %s, \"reverted\": %s, \"angle_mean_dev_before\": ",
+           s->smoothed ? "true" : "false", s->smooth_reverted ? "true" : "false");
+    sq_json_double(stdout, s->smooth.before.angle_mean_dev_deg);
+    printf(", \"angle_mean_dev_after\": ");
+    sq_json_double(stdout, s->smooth.after.angle_mean_dev_deg);
+    printf(", \"iterations\": %d, \"why\": ", s->smooth.iterations);
+    sq_json_string(stdout, s->smooth_why);
+    printf(", \"seconds\": %.6f}", s->t_smooth);
+    if (surf->S.np) printf(",\n  \"export\": {\"patches\": %u, \"seconds\": %.6f}", surf->S.np, surf->seconds);
     printf(",\n  \"verify\": {\"self_intersections\": %llu, \"input_self_intersections\": %lld, \"seconds\": %.6f}",
            (unsigned long long)s->self_intersections, (long long)s->input_self_intersections, s->t_verify);
     printf(",\n  \"time_s\": {\"cones\": %.6f, \"param\": %.6f, \"optimize\": %.6f, "
-           "\"quantize\": %.6f, \"extract\": %.6f, \"verify\": %.6f, \"total\": %.6f}",
-           s->t_cones, s->t_param, s->t_optimize, s->t_quantize, s->t_extract, s->t_verify, s->t_total);
+           "\"quantize\": %.6f, \"extract\": %.6f, \"smooth\": %.6f, \"verify\": %.6f, "
+           "\"export\": %.6f, \"total\": %.6f}",
+           s->t_cones, s->t_param, s->t_optimize, s->t_quantize, s->t_extract, s->t_smooth, s->t_verify,
+           surf->seconds, s->t_total + surf->seconds);
     if (st != SQ_OK) {
         printf(",\n  ");
         sq_json_error(st, stage, msg);
@@ -211,7 +284,8 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
 int sq_cmd_remesh(int argc, char **argv)
 {
     const char *mesh_path = NULL, *out_path = NULL, *cones_path = NULL, *keep_dir = NULL, *picture = NULL;
-    int json = 0, quiet = 0;
+    const char *step_path = NULL, *iges_path = NULL, *limit_path = NULL;
+    int json = 0, quiet = 0, level = -1;
     sq_remesh_options opt;
     memset(&opt, 0, sizeof opt);
     int have_quads = 0, have_len = 0;
@@ -226,7 +300,9 @@ int sq_cmd_remesh(int argc, char **argv)
             quiet = 1;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones") ||
                    !strcmp(a, "--quads") || !strcmp(a, "--edge-length") || !strcmp(a, "--iterations") ||
-                   !strcmp(a, "--seed") || !strcmp(a, "--keep") || !strcmp(a, "--picture")) {
+                   !strcmp(a, "--seed") || !strcmp(a, "--keep") || !strcmp(a, "--picture") ||
+                   !strcmp(a, "--smooth") || !strcmp(a, "--step") || !strcmp(a, "--iges") ||
+                   !strcmp(a, "--limit") || !strcmp(a, "--level")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "seamquad remesh: %s needs a value\n", a);
                 return SQ_EXIT_USAGE;
@@ -236,6 +312,22 @@ int sq_cmd_remesh(int argc, char **argv)
             if (!strcmp(a, "--cones")) cones_path = v;
             else if (!strcmp(a, "--keep")) keep_dir = v;
             else if (!strcmp(a, "--picture")) picture = v;
+            else if (!strcmp(a, "--step")) step_path = v;
+            else if (!strcmp(a, "--iges")) iges_path = v;
+            else if (!strcmp(a, "--limit")) limit_path = v;
+            else if (!strcmp(a, "--smooth")) {
+                if (strcmp(v, "on") && strcmp(v, "off")) {
+                    fprintf(stderr, "seamquad remesh: --smooth takes on or off, got '%s'\n", v);
+                    return SQ_EXIT_USAGE;
+                }
+                opt.no_smoothing = !strcmp(v, "off");
+            } else if (!strcmp(a, "--level")) {
+                if (!number_option(a, v, &x) || x < 0 || x > 8 || x != floor(x)) {
+                    fprintf(stderr, "seamquad remesh: --level needs an integer from 0 to 8, got '%s'\n", v);
+                    return SQ_EXIT_USAGE;
+                }
+                level = (int)x;
+            }
             else if (!strcmp(a, "--quads")) {
                 if (!number_option(a, v, &opt.quads)) return SQ_EXIT_USAGE;
                 have_quads = 1;
@@ -282,16 +374,31 @@ int sq_cmd_remesh(int argc, char **argv)
                 opt.edge_length);
         return SQ_EXIT_USAGE;
     }
-    if (sq_format_from_path(out_path) != SQ_FORMAT_OBJ) {
-        fprintf(stderr, "seamquad remesh: the output '%s' must be an .obj file\n", out_path);
+    if (level >= 0 && !limit_path) {
+        fprintf(stderr, "seamquad remesh: --level sets the grid of --limit; give --limit OUT.obj\n");
         return SQ_EXIT_USAGE;
     }
-    const char *outs[2] = {out_path, picture};
+    if (limit_path && level < 0) level = 3;
+    const char *obj_outs[2] = {out_path, limit_path};
     for (int k = 0; k < 2; k++)
-        if (outs[k] && (!strcmp(outs[k], mesh_path) || (cones_path && !strcmp(outs[k], cones_path)))) {
+        if (obj_outs[k] && sq_format_from_path(obj_outs[k]) != SQ_FORMAT_OBJ) {
+            fprintf(stderr, "seamquad remesh: the output '%s' must be an .obj file\n", obj_outs[k]);
+            return SQ_EXIT_USAGE;
+        }
+    enum { NOUTS = 5 };
+    const char *outs[NOUTS] = {out_path, picture, step_path, iges_path, limit_path};
+    for (int k = 0; k < NOUTS; k++) {
+        if (!outs[k]) continue;
+        if (!strcmp(outs[k], mesh_path) || (cones_path && !strcmp(outs[k], cones_path))) {
             fprintf(stderr, "seamquad remesh: the output '%s' would overwrite an input\n", outs[k]);
             return SQ_EXIT_USAGE;
         }
+        for (int j = 0; j < k; j++)
+            if (outs[j] && !strcmp(outs[j], outs[k])) {
+                fprintf(stderr, "seamquad remesh: '%s' is given for two outputs\n", outs[k]);
+                return SQ_EXIT_USAGE;
+            }
+    }
     opt.keep_maps = keep_dir != NULL;
     progress_state ps = {NULL, 0, sq_now()};
     if (!quiet && !json) {
@@ -311,8 +418,11 @@ int sq_cmd_remesh(int argc, char **argv)
     memset(&s, 0, sizeof s);
     int32_t *valence = NULL;
     const char *stage = "output";
-    sq_status st = probe_output(out_path, &err);
-    if (!st && picture) st = probe_output(picture, &err);
+    surface surf;
+    memset(&surf, 0, sizeof surf);
+    sq_status st = SQ_OK;
+    for (int k = 0; k < NOUTS && !st; k++)
+        if (outs[k]) st = probe_output(outs[k], &err);
     if (!st && keep_dir) {
         struct stat sb;
         if (stat(keep_dir, &sb) != 0 && mkdir(keep_dir, 0777) != 0)
@@ -340,28 +450,46 @@ int sq_cmd_remesh(int argc, char **argv)
         st = sq_remesh(&mesh, valence, &opt, &R, &s, &err);
         if (st) stage = s.stage ? s.stage : "remesh";
     }
+    if (!st && (step_path || iges_path || limit_path)) {
+        stage = "export";
+        if (opt.progress) progress(&ps, "export", 1);
+        st = build_surface(&R.quads, limit_path ? level : -1, &surf, &err);
+    }
     if (!st) {
+        /* every output, or none: what was written is removed on a failure */
         stage = "write";
-        st = sq_cli_write_quads(out_path, &R.quads, &err);
-        if (!st && picture) {
-            char title[256];
-            snprintf(title, sizeof title, "%s: %u quads, %u irregular vertices (the cones)", mesh_path, R.quads.nq,
-                     s.extract.irregular);
-            st = sq_quad_svg_write(picture, R.quads.nv, R.quads.pos, R.quads.nq, R.quads.quad, title, &err);
-            if (st) remove(out_path);
+        int written = 0;
+        for (; written < NOUTS && !st; written++) {
+            const char *path = outs[written];
+            if (!path) continue;
+            if (written == 0) {
+                st = sq_cli_write_quads(path, &R.quads, &err);
+            } else if (written == 1) {
+                char title[256];
+                snprintf(title, sizeof title, "%s: %u quads, %u irregular vertices (the cones)", mesh_path,
+                         R.quads.nq, s.extract.irregular);
+                st = sq_quad_svg_write(path, R.quads.nv, R.quads.pos, R.quads.nq, R.quads.quad, title, &err);
+            } else if (written == 2) {
+                st = sq_cad_write_step(path, mesh_path, surf.S.np, surf.S.cv, surf.S.bbox_diag, &err);
+            } else if (written == 3) {
+                st = sq_cad_write_iges(path, mesh_path, surf.S.np, surf.S.cv, surf.S.bbox_diag, &err);
+            } else {
+                st = sq_limit_mesh_write_obj(path, &surf.lm, &err);
+            }
         }
         if (!st && keep_dir) {
             st = write_keep(keep_dir, mesh.nv, &R, &err);
-            if (st) {
-                remove(out_path);
-                if (picture) remove(picture);
-            }
+            written = NOUTS + 1;
         }
+        if (st)
+            for (int k = 0; k < written - 1 && k < NOUTS; k++)
+                if (outs[k] && !sq_is_special_file(outs[k])) remove(outs[k]);
     }
-    if (json) print_json(st, mesh_path, out_path, &mesh, &R, &s, stage, err.msg);
-    else if (!st && !quiet) print_text(mesh_path, out_path, &mesh, &R, &s);
+    if (json) print_json(st, mesh_path, out_path, &mesh, &R, &s, &surf, stage, err.msg);
+    else if (!st && !quiet) print_text(mesh_path, out_path, &mesh, &R, &s, &surf);
     if (st) fprintf(stderr, "seamquad remesh: error (%s): %s\n", stage, err.msg);
     free(valence);
+    surface_free(&surf);
     sq_remesh_result_free(&R);
     sq_mesh_free(&mesh);
     sq_soup_free(&soup);

@@ -17,6 +17,7 @@
 #include "sq_remesh.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,9 +29,11 @@
  * (rough proportions on the mpz models at 5K quads: the optimizer's rounds
  * dominate). */
 #define SHARE_CONES 0.03
-#define SHARE_PARAM 0.17
-#define SHARE_OPTIMIZE 0.60
-#define SHARE_QUANTIZE 0.15
+#define SHARE_PARAM 0.15
+#define SHARE_OPTIMIZE 0.52
+#define SHARE_QUANTIZE 0.13
+#define SHARE_EXTRACT 0.03
+#define SHARE_SMOOTH 0.12
 
 typedef struct progress_ctx {
     const sq_remesh_options *opt;
@@ -64,6 +67,14 @@ static void optimize_progress(void *user, uint32_t iteration, double energy, dou
     report(pc, (double)iteration / pc->iterations);
 }
 
+static void smooth_progress(void *user, const char *phase, int iteration, double energy,
+                            uint32_t folded)
+{
+    (void)phase, (void)energy, (void)folded;
+    progress_ctx *pc = user;
+    report(pc, (double)iteration / pc->iterations);
+}
+
 static void begin(progress_ctx *pc, sq_remesh_stats *stats, const char *stage, double share)
 {
     pc->base += pc->share;
@@ -73,15 +84,23 @@ static void begin(progress_ctx *pc, sq_remesh_stats *stats, const char *stage, d
     report(pc, 0);
 }
 
-/* The triangle mesh m's intersecting triangle pairs (CGAL). */
-static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_error *err)
+/* The triangles of the triangle mesh m, 3 nf indices (malloc'ed), or NULL. */
+static uint32_t *mesh_triangles(const sq_mesh *m)
 {
     uint32_t *tri = malloc(3 * ((size_t)m->nf + 1) * sizeof *tri);
-    if (!tri) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
+    if (!tri) return NULL;
     for (uint32_t f = 0; f < m->nf; f++) {
         uint32_t h = m->f_he[f];
         for (int c = 0; c < 3; c++, h = m->he_next[h]) tri[3 * f + c] = m->he_vert[h];
     }
+    return tri;
+}
+
+/* The triangle mesh m's intersecting triangle pairs (CGAL). */
+static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_error *err)
+{
+    uint32_t *tri = mesh_triangles(m);
+    if (!tri) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
     sq_status st = sq_cgal_self_intersections(m->nv, m->pos, m->nf, tri, pairs, NULL, err);
     free(tri);
     return st;
@@ -109,6 +128,48 @@ static sq_status quads_self_intersections(const sq_quad_mesh *Q, uint64_t *pairs
     sq_status st = sq_cgal_self_intersections(Q->nv, Q->pos, 2 * Q->nq, tri, pairs, NULL, err);
     free(tri);
     return st;
+}
+
+/* Stage 7: Q smoothed on m's surface. Q->pos becomes the smoothed
+ * positions, and *raw (malloc'ed) the unsmoothed ones, when smoothing
+ * succeeds with no quad folded; otherwise Q is unchanged, *raw NULL and
+ * stats->smooth_why says why. Errors other than the smoother's own
+ * failure (out of memory) fail the run. */
+static sq_status smooth_stage(const sq_mesh *m, sq_quad_mesh *Q, progress_ctx *pc, double **raw,
+                              sq_remesh_stats *stats, sq_error *err)
+{
+    *raw = NULL;
+    uint32_t *tri = mesh_triangles(m);
+    double *keep = malloc(3 * ((size_t)Q->nv + 1) * sizeof *keep);
+    if (!tri || !keep) {
+        free(tri), free(keep);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (smoothing)");
+    }
+    memcpy(keep, Q->pos, 3 * (size_t)Q->nv * sizeof *keep);
+    sq_smooth_options so;
+    sq_smooth_options_default(&so);
+    so.progress = smooth_progress;
+    so.progress_user = pc;
+    pc->iterations = (uint32_t)so.iterations; /* untangling: none after stage 6, mostly */
+    sq_error serr = {0};
+    sq_status st = sq_smooth_quads(m->nv, m->pos, m->nf, tri, Q->nv, Q->pos, Q->nq, Q->quad, &so,
+                                   &stats->smooth, &serr);
+    free(tri);
+    if (st == SQ_ERR_NOMEM) {
+        free(keep);
+        return sq_error_set(err, st, "%s", serr.msg);
+    }
+    if (st || stats->smooth.after.folded > 0) {
+        snprintf(stats->smooth_why, sizeof stats->smooth_why, "%.150s",
+                 st ? serr.msg : "a quad folded after smoothing");
+        memcpy(Q->pos, keep, 3 * (size_t)Q->nv * sizeof *keep);
+        free(keep);
+        stats->smooth_reverted = 1;
+        return SQ_OK;
+    }
+    stats->smoothed = 1;
+    *raw = keep;
+    return SQ_OK;
 }
 
 void sq_remesh_result_free(sq_remesh_result *r)
@@ -139,6 +200,7 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     sq_map M, igm;
     memset(&M, 0, sizeof M);
     memset(&igm, 0, sizeof igm);
+    double *raw = NULL; /* the quads' unsmoothed positions (stage 7) */
     sq_status st = SQ_OK;
 
     /* 1. cones */
@@ -203,14 +265,25 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     stats->t_quantize = sq_now() - t1;
     if (st) goto fail;
 
-    /* 6. extract, untangle, refuse what stays folded */
+    /* 6. extract, untangle */
     t1 = sq_now();
-    begin(&pc, stats, "extract", 1.0 - pc.base - pc.share);
+    begin(&pc, stats, "extract", SHARE_EXTRACT);
     st = sq_extract(&igm, &out->quads, &stats->extract, err);
     if (!st) st = sq_extract_untangle(&igm, &out->quads, &stats->untangle, err);
     stats->t_extract = sq_now() - t1;
     if (st) goto fail;
-    if (stats->untangle.folded_after > 0) {
+
+    /* 7. smooth; the smoother untangles what is left folded first */
+    if (!opt->no_smoothing) {
+        t1 = sq_now();
+        begin(&pc, stats, "smooth", SHARE_SMOOTH);
+        st = smooth_stage(m, &out->quads, &pc, &raw, stats, err);
+        stats->t_smooth = sq_now() - t1;
+        if (st) goto fail;
+    }
+    /* a quad still folded fails the run */
+    if (!stats->smoothed && stats->untangle.folded_after > 0) {
+        stats->stage = "extract";
         st = sq_error_set(err, SQ_ERR_SOLVER,
                           "%u of %u quads stay folded over the surface after untangling (the "
                           "integer-grid map is too distorted there); more optimizer "
@@ -218,13 +291,35 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
                           stats->untangle.folded_after, out->quads.nq);
         goto fail;
     }
-    /* 7. no quad surface through itself where the input is not */
+    /* 8. no quad surface through itself where the input is not */
     t1 = sq_now();
-    stats->stage = "verify";
+    begin(&pc, stats, "verify", 1.0 - pc.base - pc.share);
     st = quads_self_intersections(&out->quads, &stats->self_intersections, err);
     stats->input_self_intersections = -1;
     stats->t_verify = sq_now() - t1;
     if (st) goto fail;
+    if (stats->self_intersections > 0 && raw && stats->untangle.folded_after == 0) {
+        /* the unsmoothed quads, if they pass */
+        double *smoothed = out->quads.pos;
+        uint64_t pairs = 0;
+        out->quads.pos = raw;
+        st = quads_self_intersections(&out->quads, &pairs, err);
+        if (st) {
+            out->quads.pos = smoothed;
+            goto fail;
+        }
+        if (pairs == 0) {
+            snprintf(stats->smooth_why, sizeof stats->smooth_why,
+                     "%llu pairs of the smoothed quads' triangles intersect, none of the unsmoothed",
+                     (unsigned long long)stats->self_intersections);
+            stats->self_intersections = 0;
+            stats->smoothed = 0;
+            stats->smooth_reverted = 1;
+            raw = smoothed;
+        } else {
+            out->quads.pos = smoothed;
+        }
+    }
     if (stats->self_intersections > 0) {
         uint64_t in = 0;
         st = mesh_self_intersections(m, &in, err);
@@ -251,11 +346,13 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     }
     sq_map_free(&M);
     sq_map_free(&igm);
+    free(raw);
     stats->t_total = sq_now() - t0;
     return SQ_OK;
 
 fail:
     stats->t_total = sq_now() - t0;
+    free(raw);
     sq_param_free(&P);
     sq_map_free(&M);
     sq_map_free(&igm);

@@ -16,17 +16,22 @@
  *     optimization step (sq_quantize);
  *  6. extract: the quad mesh (sq_extract), folded quads relaxed on the
  *     surface (sq_extract_untangle); a quad still folded fails the run;
- *  7. verify: the quad surface (each quad split along its shorter
+ *  7. smooth (unless no_smoothing): the quads' vertices moved on the input
+ *     surface toward right angles and even edges (sq_smooth_quads: Ceres,
+ *     no step folds a quad); the unsmoothed quads are kept when smoothing
+ *     fails or its result fails the verify stage where theirs passes;
+ *  8. verify: the quad surface (each quad split along its shorter
  *     diagonal) must not intersect itself where the input does not
  *     (CGAL's exact test, sq_cgal_adapter.h); if it does, the run fails.
  *
  * Guarantees of a successful result: a closed, manifold, pure-quad mesh of
  * the input's genus whose irregular vertices are exactly the cones (a cone
  * of valence k is a vertex of k quads), every vertex on the input surface,
- * no quad folded (both triangulations positive against the surface
- * normal, as the referee tests), and, where the input does not intersect
- * itself, no two of the quads' triangles intersecting. On failure nothing is returned, the
- * error names the stage (sq_remesh_stats.stage) and the cause.
+ * no quad folded (the referee's test: a quad is folded when in both of its
+ * triangulations the two triangles' normals differ by more than 90
+ * degrees), and, where the input does not intersect itself, no two of the
+ * quads' triangles intersecting. On failure nothing is returned, the error
+ * names the stage (sq_remesh_stats.stage) and the cause.
  *
  * The library never prints or exits. */
 #ifndef SQ_REMESH_H
@@ -42,6 +47,7 @@
 #include "sq_optimize.h"
 #include "sq_param.h"
 #include "sq_quantize.h"
+#include "sq_smooth.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -61,6 +67,7 @@ typedef struct sq_remesh_options {
     uint64_t seed;                 /* param's cut-graph seed (0: 1)          */
     uint32_t attempts;             /* param's attempts (0: 4)                */
     int keep_maps;                 /* 1: the result keeps the three maps     */
+    int no_smoothing;              /* 1: skip stage 7                        */
     /* progress (may be NULL): the stage and the fraction of the whole run */
     void (*progress)(void *user, const char *stage, double fraction);
     void *user;
@@ -90,17 +97,24 @@ typedef struct sq_remesh_stats {
     sq_quantize_stats quantize;
     sq_extract_stats extract;
     sq_untangle_stats untangle;
+    sq_smooth_stats smooth;        /* stage 7 (quality before and after)     */
+    int smoothed;                  /* 1: the quads returned are smoothed     */
+    int smooth_reverted;           /* 1: smoothed, but the unsmoothed quads  */
+                                   /* were returned (smooth_why says why)    */
+    char smooth_why[160];
     uint64_t self_intersections;   /* intersecting pairs of the quads'       */
                                    /* triangles (each quad split along its   */
                                    /* shorter diagonal; CGAL)                */
     int64_t input_self_intersections; /* the input's, when the quads have    */
                                    /* some (-1: not computed)                */
     double t_verify;               /* the self-intersection test             */
-    double t_cones, t_param, t_optimize, t_quantize, t_extract, t_total; /* stage 3 in t_optimize */
+    double t_cones, t_param, t_optimize, t_quantize, t_extract, t_smooth, t_total; /* stage 3 in t_optimize */
 } sq_remesh_stats;
 
 typedef struct sq_remesh_result {
-    sq_quad_mesh quads;
+    sq_quad_mesh quads;            /* when smoothed, pos is the smoothed     */
+                                   /* position and uv, loc_face, loc_bary    */
+                                   /* still those of the integer grid point  */
     int32_t *valence;              /* nv of the input: the cones used        */
     /* with keep_maps: param's map, the optimized map, the integer-grid map */
     sq_map map, optimized, igm;

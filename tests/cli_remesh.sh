@@ -20,6 +20,12 @@
 #    EXPECTED.tsv and EXPECTED_io.tsv), a directory, an unreadable file, an
 #    unwritable output (refused before any work: no progress line) and bad
 #    flags: the documented exit code and message, nothing written.
+#  - smoothing (on by default) lowers the mean |angle - 90| and keeps every
+#    guarantee; --smooth off gives the unsmoothed quads;
+#  - --step, --iges and --limit: the Catmull-Clark surface of the quads, the
+#    CAD files imported by OpenCASCADE as valid shapes of one B-spline face
+#    per patch (the test-only occt_check beside the binary), the limit mesh
+#    with 4^level quads per quad;
 # Prints PASS/FAIL per case and a total.
 set -u
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -74,8 +80,12 @@ assert j["extract"]["irregular"] == j["cones"], j
 assert j["optimize"]["conformal_after"] <= j["optimize"]["conformal_before"], j
 ang = r["quality"]["angle_mean_abs_dev_from_90_deg"]
 assert ang < max_angle, ang
-for k in ("cones", "param", "optimize", "quantize", "extract", "total"):
+for k in ("cones", "param", "optimize", "quantize", "extract", "smooth", "verify", "total"):
     assert j["time_s"][k] >= 0, k
+sm = j["smooth"]
+if sm["smoothed"]:
+    assert sm["angle_mean_dev_after"] < sm["angle_mean_dev_before"], sm
+    assert abs(sm["angle_mean_dev_after"] - ang) < 1e-6, (sm, ang)
 PY
     ok; echo "PASS $name: $(tail -1 "$out.ref")"
   else
@@ -85,9 +95,16 @@ PY
 
 cube=$root/examples/cube.obj
 remeshes cube "$cube" "$root/examples/cube.cones" 1000 8
+remeshes cube_raw "$cube" "$root/examples/cube.cones" 1000 8 --smooth off
+if python3 -c 'import json,sys; a,b=(json.load(open(f))["smooth"] for f in sys.argv[1:]); assert a["smoothed"] and not b["smoothed"] and not b["reverted"], (a,b)' \
+    "$tmp/cube.json" "$tmp/cube_raw.json" 2>"$tmp/sm.err" && ! cmp -s "$tmp/cube.obj" "$tmp/cube_raw.obj"; then
+  ok; echo "PASS --smooth off: the unsmoothed quads"
+else
+  bad "--smooth off: $(cat "$tmp/sm.err")"
+fi
 mkdir -p "$tmp/keep_cube_field"
 remeshes cube_field "$cube" - 1000 8 --keep "$tmp/keep_cube_field"
-remeshes eight "$shared/data/mpz/eight.obj" "$shared/data/mpz/eight_Th_hat" 5000 8 --keep "$tmp/keep_eight" \
+remeshes eight "$shared/data/mpz/eight.obj" "$shared/data/mpz/eight_Th_hat" 5000 3 --keep "$tmp/keep_eight" \
   --picture "$tmp/eight.svg"
 # the picture: an SVG of the quads facing the viewer (about half of them)
 nq=$(grep -c '^f ' "$tmp/eight.obj" 2>/dev/null || echo 0)
@@ -112,6 +129,33 @@ if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   else
     bad "helmet: exit $rc: $(tail -1 "$tmp/helmet.err")"
   fi
+fi
+
+# --step, --iges, --limit: the quads' Catmull-Clark surface
+checker=$(dirname "$bin")/occt_check
+if "$bin" remesh "$cube" --quads 300 -o "$tmp/cs.obj" --step "$tmp/cs.step" --iges "$tmp/cs.igs" \
+    --limit "$tmp/cs_limit.obj" --level 1 --json >"$tmp/cs.json" 2>"$tmp/cs.err"; then
+  np=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["export"]["patches"])' "$tmp/cs.json")
+  nq=$(grep -c '^f ' "$tmp/cs.obj")
+  nl=$(grep -c '^f ' "$tmp/cs_limit.obj")
+  nvn=$(grep -c '^vn ' "$tmp/cs_limit.obj")
+  if [ "$np" -gt "$nq" ] && [ "$nl" -eq $((4 * nq)) ] && [ "$nvn" -gt 0 ] \
+      && grep -q "ISO-10303-21" "$tmp/cs.step" && [ "$(grep -c B_SPLINE_SURFACE_WITH_KNOTS "$tmp/cs.step")" -eq "$np" ]; then
+    ok; echo "PASS --step --iges --limit: $np patches for $nq quads, limit mesh of $nl quads"
+  else
+    bad "--step --iges --limit: $np patches, $nq quads, $nl limit quads, $nvn normals"
+  fi
+  if [ -x "$checker" ]; then
+    for f in cs.step cs.igs; do
+      out=$(ASAN_OPTIONS=detect_leaks=0 "$checker" "$tmp/$f" | grep '^format')
+      case "$out" in
+        *"faces $np valid 1 bspline $np "*) ok; echo "PASS OpenCASCADE imports $f: $out" ;;
+        *) bad "OpenCASCADE on $f: $out" ;;
+      esac
+    done
+  fi
+else
+  bad "--step --iges --limit: $(tail -1 "$tmp/cs.err")"
 fi
 
 # --keep: the intermediates pass the map referee
@@ -158,6 +202,9 @@ refused "unwritable output" 1 "no/such/dir" "$cube" -o "$tmp/e/no/such/dir/q.obj
 if grep -q "param" "$tmp/err.txt"; then bad "unwritable output: the work started"; else ok; fi
 refused "unwritable --picture" 1 "no/such/dir" "$cube" -o "$tmp/e/q.obj" --picture "$tmp/e/no/such/dir/v.svg"
 refused "unwritable --keep" 1 "not a directory" "$cube" -o "$tmp/e/q.obj" --keep "$cube"
+refused "unwritable --step" 1 "no/such/dir" "$cube" -o "$tmp/e/q.obj" --step "$tmp/e/no/such/dir/q.step"
+if grep -q "param" "$tmp/err.txt"; then bad "unwritable --step: the work started"; else ok; fi
+refused "unwritable --limit" 1 "no/such/dir" "$cube" -o "$tmp/e/q.obj" --limit "$tmp/e/no/such/dir/l.obj"
 # bad flags
 refused "no output" 2 "give MESH and -o" "$cube"
 refused "--quads 0" 2 "between 1 and 1e8" "$cube" --quads 0 -o "$tmp/e/q.obj"
@@ -170,6 +217,11 @@ refused "--iterations 0" 2 "count from 1" "$cube" --iterations 0 -o "$tmp/e/q.ob
 refused "unknown option" 2 "unknown option" "$cube" --frobnicate -o "$tmp/e/q.obj"
 refused "output .ply" 2 "must be an .obj" "$cube" -o "$tmp/e/q.ply"
 refused "output = input" 2 "would overwrite" "$cube" -o "$cube"
+refused "--smooth maybe" 2 "on or off" "$cube" --smooth maybe -o "$tmp/e/q.obj"
+refused "--level without --limit" 2 "give --limit" "$cube" --level 2 -o "$tmp/e/q.obj"
+refused "--level 9" 2 "from 0 to 8" "$cube" --level 9 --limit "$tmp/e/l.obj" -o "$tmp/e/q.obj"
+refused "--limit .ply" 2 "must be an .obj" "$cube" --limit "$tmp/e/l.ply" -o "$tmp/e/q.obj"
+refused "one file for two outputs" 2 "two outputs" "$cube" --step "$tmp/e/q.obj" -o "$tmp/e/q.obj"
 if "$bin" remesh --help | grep -q "Guarantees of QUADS.obj"; then ok; else bad "--help"; fi
 
 echo "cli_remesh: $pass passed, $fail failed"
