@@ -4,6 +4,7 @@
 #include "sq_clock.h"
 #include "sq_param.h"
 #include "sq_param_internal.h"
+#include "sq_param_steps.h"
 
 #include <assert.h>
 #include <math.h>
@@ -55,117 +56,6 @@ void sq_param_free(sq_param *P)
     sq_param_init(P);
 }
 
-/* ---- working state ---------------------------------------------------- */
-
-typedef struct ctx {
-    const sq_mesh *m;
-    sq_cut_graph *given_G;    /* the cut graph to use (its he_cut on m, m     */
-                              /* refined where it walled a cone in; taken    */
-                              /* over), or NULL                              */
-    int walled;               /* tree qtri: the surface tree left a cone out */
-    const sq_param_options *opt; /* never NULL (sq_param_build fills defaults) */
-    sq_error *err;
-    sq_tsurf S;
-    sq_cut_graph G;
-    sq_pattern pcw;      /* the cut disk's word read clockwise            */
-    uint32_t k, r;       /* sides; Q side i = clockwise side (i + r) % k   */
-    sq_domain *D;
-    sq_cone_tree *T;
-    sq_omega *O;
-    sq_omega_cells C;
-    uint32_t *o2m;       /* O->cut.nh: M halfedge naming the same sector   */
-    uint32_t *sec_uv;    /* 3 S.cap_f: UV index of the sector named by h   */
-    uint32_t cap_sec;
-    double *uv;
-    uint32_t nuv, cap_uv;
-    int dyadic;          /* seam UVs are multiples of 2^-dyadic             */
-    int keep_flips;      /* debugging: return a map with flips (tests)     */
-    int guided;          /* seed 9.2 guidance (sq_param_options.guidance)  */
-    const int32_t *S_valence; /* the input's valences (m->nv)              */
-    double *step_xy;       /* disk positions of the steps' cones          */
-    double *surf_corner_angle; /* k: the cut graph's corners on the circle */
-    sq_guide_glue glue;    /* Algorithm 1's chooser: c = step_xy, chosen */
-                           /* = its glue edge per step (for rebuilds)     */
-    uint32_t *step_vertex; /* genus >= 1, guided: the surface cone of each */
-                           /* metapolygon step (seed 9.2, Algorithm 1)     */
-    uint32_t *s_tree_next; /* m->nv: the surface tree (sq_guide_surface_tree) */
-    uint32_t root_surface; /* the surface tree's root vertex on the cut    */
-    uint32_t root_step;    /* the step whose cone (nearest the circle) Q's */
-                           /* root path starts from (SQ_NONE: not guided)  */
-    int tree_exact;      /* Q's tree is the surface tree's exact copy    */
-                         /* (sq_guide_tree_pair; its root: root_surface) */
-    uint32_t *q_branch;  /* Q->nv: seed 9.4 guided tree: the surface vertex */
-                         /* where the surface tree branched for a regular  */
-                         /* branch vertex of Q's tree; SQ_NONE elsewhere,  */
-                         /* NULL when the tree is not guided               */
-    uint32_t *q_target;  /* Q->nv: the surface cone matched to a cone of Q */
-                         /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
-                         /* when unguided                                  */
-    const _Atomic int *cancel;  /* another attempt passed: stop (may be NULL)  */
-    const _Atomic uint64_t *limit; /* the overlay's crossings allowed, set by  */
-                                   /* another attempt while this one runs (0: */
-                                   /* none; may be NULL)                      */
-    uint64_t gate;              /* domain variants: the overlay's expected    */
-                                /* crossings above which this domain is given */
-                                /* up for the next variant (0: none)          */
-    uint32_t *h_uv;             /* S.nh: corner_uv of every halfedge once the */
-                                /* interior map of a round is done; else NULL */
-    uint32_t *face_limit;       /* O->cut.nf or NULL: cell size limits per quad */
-                                /* of Omega (step 7c, refinement rounds)       */
-    int qtri;                   /* SQ_TREE_QTRI: Omega from Q triangulated     */
-    uint32_t qt_nseg;           /* its tree segments (O's labels k + 2s, +1)   */
-    uint32_t *qt_from, *qt_to;  /* qt_nseg: the surface nodes each joins, the  */
-                                /* one nearer the root first                   */
-    uint32_t qt_verts, qt_steiner; /* Q triangulated: vertices, Steiner ones   */
-    uint32_t qt_edges;          /* its tree's edges                            */
-} ctx;
-
-static void progress(ctx *c, const char *stage, double f)
-{
-    if (c->opt && c->opt->progress) c->opt->progress(c->opt->progress_ctx, stage, f);
-}
-
-static int sec_reserve(ctx *c)
-{
-    uint32_t need = c->S.cap_h;
-    if (need <= c->cap_sec) return 0;
-    uint32_t *p = realloc(c->sec_uv, (size_t)need * sizeof *p);
-    if (!p) return -1;
-    for (uint32_t i = c->cap_sec; i < need; i++) p[i] = SQ_NONE;
-    c->sec_uv = p;
-    c->cap_sec = need;
-    return 0;
-}
-
-static uint32_t uv_add(ctx *c, double u, double v)
-{
-    if (c->nuv == c->cap_uv) {
-        uint32_t cap = c->cap_uv ? 2 * c->cap_uv : 1024;
-        double *p = realloc(c->uv, 2 * (size_t)cap * sizeof *p);
-        if (!p) return SQ_NONE;
-        c->uv = p;
-        c->cap_uv = cap;
-    }
-    c->uv[2 * c->nuv] = u;
-    c->uv[2 * c->nuv + 1] = v;
-    return c->nuv++;
-}
-
-/* Steiner vertex budget: beyond it the cut paths are refining the surface
- * without end (regions too narrow for the domain's combinatorics) */
-/* The UV index of the corner of face(h) at its origin: the vertex's own
- * (v_uv, once the interior map has run; may be NULL before) off the cut,
- * its sector's on the cut; SQ_NONE where there is none yet. */
-static uint32_t corner_uv(const ctx *c, const uint32_t *v_uv, uint32_t h)
-{
-    if (c->h_uv) return c->h_uv[h];
-    const sq_tsurf *S = &c->S;
-    uint32_t v = S->vert[h];
-    if (!S->v_ncut[v]) return v_uv ? v_uv[v] : SQ_NONE;
-    uint32_t sec = sq_tsurf_sector_of(S, h);
-    return sec == SQ_NONE ? SQ_NONE : c->sec_uv[sec];
-}
-
 /* corner_uv of every halfedge at once (c->h_uv), for the checks after the
  * interior map: each sector is walked once, counterclockwise from the cut
  * halfedge that bounds it, instead of once per corner. 0: no memory. */
@@ -186,66 +76,12 @@ static int corner_table(ctx *c, const uint32_t *v_uv)
     return 1;
 }
 
-/* Q's sides and corners against the cut graph's (sq_cut_graph_domain_offset:
- * Q is read clockwise, the cut graph counterclockwise, shifted by r): the
- * surface side standing for Q side qs, its inverse, and the surface corner
- * standing for Q corner i. */
-static uint32_t surface_side_of_q(const ctx *c, uint32_t qs) { return c->k - 1 - (qs + c->r) % c->k; }
-static uint32_t q_side_of_surface(const ctx *c, uint32_t s) { return (2 * c->k - 1 - s - c->r % c->k) % c->k; }
-static uint32_t surface_corner(uint32_t k, uint32_t r, uint32_t i) { return (k - (i + r) % k) % k; }
-static uint32_t surface_corner_of_q(const ctx *c, uint32_t i) { return surface_corner(c->k, c->r, i); }
-
 /* Steiner vertices allowed (sq_param_options.max_steiner) */
 uint64_t sq_param_steiner_budget(const sq_param_options *opt, uint32_t nv_input)
 {
     return opt->max_steiner ? opt->max_steiner : 9u * (uint64_t)nv_input + 100000u;
 }
 
-static uint64_t steiner_budget(const ctx *c) { return sq_param_steiner_budget(c->opt, c->S.nv_input); }
-
-/* the distortion statistics are left to sq_param_build, which measures
- * them after the simplification (of a map 2 to 13 times smaller) */
-static int distortion_later(const ctx *c) { return c->opt->simplify != SQ_SIMPLIFY_OFF && !c->opt->allow_flips; }
-
-static int cancelled(const ctx *c) { return c->cancel && atomic_load(c->cancel); }
-
-/* Between the long steps: SQ_ERR_SOLVER once the attempt is cancelled. */
-static sq_status stop_if_cancelled(const ctx *c)
-{
-    return cancelled(c) ? sq_error_set(c->err, SQ_ERR_SOLVER, "cancelled: an earlier attempt passed") : SQ_OK;
-}
-
-/* Also true once the attempt is cancelled: every long loop checks it. */
-static int over_budget(const ctx *c)
-{
-    return (uint64_t)(c->S.nv - c->S.nv_input) > steiner_budget(c) || cancelled(c);
-}
-
-static sq_status budget_error(ctx *c, const char *stage)
-{
-    return sq_error_set(c->err, SQ_ERR_SOLVER,
-                        "%s: more than %llu Steiner vertices were needed (input %u vertices); the "
-                        "surface cut is too far from the domain's shape (try other --seed values, "
-                        "or a larger --max-steiner)",
-                        stage, (unsigned long long)steiner_budget(c), c->S.nv_input);
-}
-
-static double snap(const ctx *c, double x) { return ldexp(nearbyint(ldexp(x, c->dyadic)), -c->dyadic); }
-
-/* y = R^rot x + t (R: +90 degrees), exact for dyadic x */
-static void transition(const sq_omega *O, uint32_t l, const double x[2], double y[2])
-{
-    double a = x[0], b = x[1];
-    for (uint32_t i = 0; i < O->label_rot[l]; i++) {
-        double t = a;
-        a = -b, b = t;
-    }
-    y[0] = a + ldexp((double)O->label_t[2 * l], -O->xy_shift);
-    y[1] = b + ldexp((double)O->label_t[2 * l + 1], -O->xy_shift);
-}
-
-/* segments of the cone tree (Q's, or the triangulated Q's) */
-static uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c->T->nseg; }
 
 /* ---- step 1-3: cut graph, domain, Omega ------------------------------ */
 
