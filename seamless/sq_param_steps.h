@@ -209,4 +209,14 @@ static inline void transition(const sq_omega *O, uint32_t l, const double x[2], 
 /* segments of the cone tree (Q's, or the triangulated Q's) */
 static inline uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c->T->nseg; }
 
+/* ---- output (sq_param_assemble.c) ------------------------------------- */
+
+/* P from the surface c->S and its UVs (corner_uv with v_uv): positions,
+ * triangles, UVs compacted to the used ones, seams, cut halfedges, input
+ * faces and valences; stats' sizes (and distortion unless
+ * distortion_later). SQ_ERR_SOLVER where a UV triangle is not positively
+ * oriented (exact predicate), unless c->keep_flips. */
+sq_status sq_param_assemble(ctx *c, const uint32_t *v_uv, const int32_t *valence, sq_param *P,
+                            sq_param_stats *stats);
+
 #endif /* SQ_PARAM_STEPS_H */
