@@ -209,6 +209,45 @@ static inline void transition(const sq_omega *O, uint32_t l, const double x[2], 
 /* segments of the cone tree (Q's, or the triangulated Q's) */
 static inline uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c->T->nseg; }
 
+/* ---- step 5: boundary map (sq_param.c) -------------------------------- */
+
+/* Omega's boundary as face halfedges counterclockwise into oseq (room for
+ * W->nbnd): their count, SQ_NONE when the loop does not close. */
+uint32_t sq_param_omega_boundary(const sq_metapolygon *W, uint32_t *oseq);
+
+/* ---- steps 6-7c: the interior map by cells (sq_param.c) ---------------- */
+
+/* The state of an attempt before its cells (step 6): every refinement
+ * round starts again from it, so the cut graph, domain, tree and boundary
+ * map are built once per attempt. */
+typedef struct sq_param_before_cells {
+    sq_tsurf S;
+    uint32_t *sec_uv, cap_sec;
+    double *uv;
+    uint32_t nuv;
+    uint32_t *o2m;
+} sq_param_before_cells;
+
+/* The state saved (sq_param_before_cells_save), freed, and restored into
+ * c (sec_uv and uv only grow, so they have room). */
+sq_status sq_param_before_cells_save(const ctx *c, sq_param_before_cells *b);
+void sq_param_before_cells_free(sq_param_before_cells *b);
+sq_status sq_param_before_cells_restore(ctx *c, const sq_param_before_cells *b);
+
+/* ---- step 7': the interior map by overlay (sq_param_overlay.c) ---------- */
+
+/* Step 7': the cut surface on the disk once, then Omega triangulated in
+ * its unit squares, and where that fails (over the budget, mostly) and
+ * `rectangles` is 1, in the rectangles of its chords (2: the rectangles
+ * first, the squares second). Fills P and stats; every triangle checked. */
+sq_status sq_param_overlay_map(ctx *c, const int32_t *valence, int rectangles, sq_param *P,
+                               sq_param_stats *stats);
+/* SQ_INTERIOR_AUTO after the cells passed: the overlay on the same cut,
+ * tree and boundary map (saved) replaces *out where it passes too; its
+ * failure keeps the cells' map (only out of memory is an error). */
+sq_status sq_param_overlay_after_cells(ctx *c, const sq_param_before_cells *saved, const int32_t *valence,
+                                       sq_param *out, sq_param_stats *stats);
+
 /* ---- output (sq_param_assemble.c) ------------------------------------- */
 
 /* P from the surface c->S and its UVs (corner_uv with v_uv): positions,
