@@ -2242,6 +2242,60 @@ sq_status sq_param_before_cells_restore(ctx *c, const sq_param_before_cells *b)
     return SQ_OK;
 }
 
+/* Steps 6-7c with up to c->opt->refine rounds: Omega's cells (the chords
+ * replayed on the surface), Tutte's map of every cell, flips repaired
+ * (7b), and where triangles stay bad the cells holding them halved for the
+ * next round (7c), which starts again from `saved` (filled when
+ * opt->refine is not 0). *v_uv: the last round's UV index per surface
+ * vertex (the caller frees it); *t_round, *t3: when the last round and
+ * its Tutte map began. stats: chords, cells, rounds, cells_refined. */
+static sq_status cells_map(ctx *c, const sq_param_before_cells *saved, uint32_t **v_uv, sq_param_stats *stats,
+                           double *t_round, double *t3)
+{
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    for (uint32_t round = 0; st == SQ_OK; round++) {
+        st = stop_if_cancelled(c);
+        if (st) break;
+        if (round) {
+            progress(c, "halving the cells with bad triangles", 0.55);
+            free(c->h_uv); /* it describes the surface being dropped */
+            c->h_uv = NULL;
+            st = sq_param_before_cells_restore(c, saved);
+            if (st) break;
+            *t_round = sq_now();
+        }
+        progress(c, "cells", 0.55);
+        st = sq_omega_cells_build(c->O, 0, c->face_limit, &c->C, err);
+        if (st == SQ_OK) st = replay_chords(c);
+        if (st) break;
+        stats->chords = c->C.nchords, stats->cells = c->C.ncells;
+        if (sq_tsurf_split_blocking(&c->S, 0) < 0 || sec_reserve(c)) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        *t3 = sq_now();
+        progress(c, "tutte", 0.7);
+        free(*v_uv);
+        *v_uv = malloc((size_t)c->S.nv * sizeof **v_uv);
+        if (!*v_uv) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+            break;
+        }
+        st = tutte(c, *v_uv);
+        if (st == SQ_OK && !corner_table(c, *v_uv)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        if (st) break;
+        /* step 7b; step 8 checks every triangle */
+        if (repair_flips(c, *v_uv, 50) == 0 || round >= c->opt->refine) break;
+        uint32_t halved = 0;
+        st = refine_bad_cells(c, *v_uv, &halved); /* step 7c */
+        if (st || halved == 0) break;
+        stats->rounds = round + 1;
+        stats->cells_refined += halved;
+    }
+    return st;
+}
+
 /* One attempt with the options as given (opt and stats are never NULL here;
  * the cone set has passed its checks), with up to opt->refine rounds of
  * step 7c. */
@@ -2325,45 +2379,7 @@ static sq_status build_once(const sq_mesh *m, const int32_t *valence, const sq_p
     }
     int then_overlay = opt->interior == SQ_INTERIOR_AUTO && !c.keep_flips;
     if (opt->refine || then_overlay) st = sq_param_before_cells_save(&c, &saved);
-    for (uint32_t round = 0; st == SQ_OK; round++) {
-        st = stop_if_cancelled(&c);
-        if (st) break;
-        if (round) {
-            progress(&c, "halving the cells with bad triangles", 0.55);
-            free(c.h_uv); /* it describes the surface being dropped */
-            c.h_uv = NULL;
-            st = sq_param_before_cells_restore(&c, &saved);
-            if (st) break;
-            t_round = sq_now();
-        }
-        progress(&c, "cells", 0.55);
-        st = sq_omega_cells_build(c.O, 0, c.face_limit, &c.C, err);
-        if (st == SQ_OK) st = replay_chords(&c);
-        if (st) break;
-        stats->chords = c.C.nchords, stats->cells = c.C.ncells;
-        if (sq_tsurf_split_blocking(&c.S, 0) < 0 || sec_reserve(&c)) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            break;
-        }
-        t3 = sq_now();
-        progress(&c, "tutte", 0.7);
-        free(v_uv);
-        v_uv = malloc((size_t)c.S.nv * sizeof *v_uv);
-        if (!v_uv) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            break;
-        }
-        st = tutte(&c, v_uv);
-        if (st == SQ_OK && !corner_table(&c, v_uv)) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        if (st) break;
-        /* step 7b; step 8 checks every triangle */
-        if (repair_flips(&c, v_uv, 50) == 0 || round >= opt->refine) break;
-        uint32_t halved = 0;
-        st = refine_bad_cells(&c, v_uv, &halved); /* step 7c */
-        if (st || halved == 0) break;
-        stats->rounds = round + 1;
-        stats->cells_refined += halved;
-    }
+    if (st == SQ_OK) st = cells_map(&c, &saved, &v_uv, stats, &t_round, &t3);
     if (st) goto done;
     t4 = sq_now();
     progress(&c, "check", 0.9);
