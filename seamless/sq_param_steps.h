@@ -214,8 +214,18 @@ static inline uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c
 /* Omega's boundary as face halfedges counterclockwise into oseq (room for
  * W->nbnd): their count, SQ_NONE when the loop does not close. */
 uint32_t sq_param_omega_boundary(const sq_metapolygon *W, uint32_t *oseq);
+/* The polyline he[0..n) split at the arc-length fractions j / N (frac[j]
+ * where frac is not NULL), existing vertices taken where close; matched
+ * (N + 1): the vertex of every fraction. */
+sq_status sq_param_split_polyline(ctx *c, const uint32_t *he, uint32_t n, uint32_t N, const double *frac,
+                                  uint32_t *matched);
+/* UVs of the polyline he[0..n) whose vertices matched[0..N] sit at the
+ * grid points g (times gs), the others between by arc length, snapped;
+ * uvv (n + 1): the UV index of every polyline vertex. */
+sq_status sq_param_polyline_uv(ctx *c, const uint32_t *he, uint32_t n, const uint32_t *matched,
+                               const int64_t *g, double gs, uint32_t N, uint32_t *uvv);
 
-/* ---- steps 6-7c: the interior map by cells (sq_param.c) ---------------- */
+/* ---- steps 6-7c: the interior map by cells (sq_param_interior.c) ------- */
 
 /* The state of an attempt before its cells (step 6): every refinement
  * round starts again from it, so the cut graph, domain, tree and boundary
@@ -233,6 +243,12 @@ typedef struct sq_param_before_cells {
 sq_status sq_param_before_cells_save(const ctx *c, sq_param_before_cells *b);
 void sq_param_before_cells_free(sq_param_before_cells *b);
 sq_status sq_param_before_cells_restore(ctx *c, const sq_param_before_cells *b);
+/* Steps 6-7c with up to opt->refine rounds, each from `saved`: cells,
+ * chords, Tutte, flips repaired, bad cells halved. *v_uv: the UV index of
+ * every surface vertex (the caller frees it); *t_round, *t3: when the last
+ * round and its Tutte map began. */
+sq_status sq_param_cells_map(ctx *c, const sq_param_before_cells *saved, uint32_t **v_uv, sq_param_stats *stats,
+                             double *t_round, double *t3);
 
 /* ---- step 7': the interior map by overlay (sq_param_overlay.c) ---------- */
 
