@@ -209,7 +209,19 @@ static inline void transition(const sq_omega *O, uint32_t l, const double x[2], 
 /* segments of the cone tree (Q's, or the triangulated Q's) */
 static inline uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c->T->nseg; }
 
-/* ---- step 5: boundary map (sq_param.c) -------------------------------- */
+/* ---- step 4: the cut on the surface (sq_param.c) ---------------------- */
+
+/* The halfedges of the boundary run from halfedge h to vertex end_v
+ * (after splits) into *out (the caller frees it), *n of them. */
+sq_status sq_param_walk_run(ctx *c, uint32_t h, uint32_t end_v, uint32_t **out, uint32_t *n);
+
+/* ---- step 5: boundary map (sq_param_boundary.c) ----------------------- */
+
+/* Step 5: the surface's cut boundary split at Omega's boundary grid points
+ * and given UVs (c->sec_uv, c->uv; the seams' UVs exact transitions of
+ * each other, on the dyadic grid c->dyadic); c->o2m for Omega's boundary
+ * halfedges. */
+sq_status sq_param_boundary_map(ctx *c);
 
 /* Omega's boundary as face halfedges counterclockwise into oseq (room for
  * W->nbnd): their count, SQ_NONE when the loop does not close. */
