@@ -136,27 +136,13 @@ uint32_t sq_param_omega_boundary(const sq_metapolygon *W, uint32_t *oseq)
     return b == W->bnd_he ? nb : SQ_NONE;
 }
 
-sq_status sq_param_boundary_map(ctx *c)
+/* The surface's boundary loop: *mseq (the caller frees it), its *nm cut
+ * halfedges in order from the first one. */
+static sq_status surface_boundary(ctx *c, uint32_t **mseq_out, uint32_t *nm_out)
 {
     sq_tsurf *S = &c->S;
-    const sq_omega *O = c->O;
-    const sq_metapolygon *W = &O->cut;
     sq_error *err = c->err;
-    sq_status st = SQ_OK;
-    /* Omega: boundary face halfedges counterclockwise */
-    uint32_t nb = W->nbnd;
-    uint32_t *oseq = malloc((size_t)nb * sizeof *oseq);
     uint32_t *mseq = NULL, nm = 0, capm = 0;
-    run *orun = NULL, *mrun = NULL;
-    uint32_t *pl = NULL, npl = 0, *matched = NULL, *uvv = NULL;
-    int64_t *g = NULL;
-    double *gfrac = NULL;
-    const double gs = ldexp(1.0, -O->xy_shift);
-    if (!oseq) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    if (sq_param_omega_boundary(W, oseq) == SQ_NONE) {
-        st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", nb);
-        goto done;
-    }
     /* M: boundary loop from the first cut graph halfedge */
     uint32_t h0 = SQ_NONE;
     for (uint32_t h = 0; h < S->nh && h0 == SQ_NONE; h++)
@@ -168,8 +154,8 @@ sq_status sq_param_boundary_map(ctx *c)
                 capm = capm ? 2 * capm : 1024;
                 uint32_t *p = realloc(mseq, capm * sizeof *p);
                 if (!p) {
-                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-                    goto done;
+                    free(mseq);
+                    return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                 }
                 mseq = p;
             }
@@ -177,10 +163,27 @@ sq_status sq_param_boundary_map(ctx *c)
             h = sq_tsurf_next_boundary(S, h);
         } while (h != h0 && nm <= S->nh);
         if (h != h0) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "the surface boundary loop does not close");
-            goto done;
+            free(mseq);
+            return sq_error_set(err, SQ_ERR_INTERNAL, "the surface boundary loop does not close");
         }
     }
+    *mseq_out = mseq, *nm_out = nm;
+    return SQ_OK;
+}
+
+/* Both boundary loops, Omega's (oseq, nb) and the surface's (mseq, nm), in
+ * runs of equal labels, matched label by label: *mrun (the caller frees
+ * it), *nmr of them, each with its Omega run (o0, on). */
+static sq_status match_runs(ctx *c, const uint32_t *oseq, uint32_t nb, const uint32_t *mseq, uint32_t nm,
+                            run **mrun_out, uint32_t *nmr_out)
+{
+    sq_tsurf *S = &c->S;
+    const sq_omega *O = c->O;
+    const sq_metapolygon *W = &O->cut;
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    run *orun = NULL, *mrun = NULL;
+    uint32_t nmr = 0;
     /* runs of equal labels; rotate both so that a run starts at index 0 */
 #define OLABEL(f) (O->he_label[W->he_twin[f]])
     uint32_t so = 0, sm = 0;
@@ -196,7 +199,7 @@ sq_status sq_param_boundary_map(ctx *c)
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    uint32_t nor = 0, nmr = 0;
+    uint32_t nor = 0;
     for (uint32_t i = 0; i < nb; i++) {
         uint32_t f = oseq[(so + i) % nb];
         if (i == 0 || OLABEL(f) != orun[nor - 1].label) orun[nor++] = (run){OLABEL(f), 0, 0, (so + i) % nb, 0};
@@ -226,27 +229,56 @@ sq_status sq_param_boundary_map(ctx *c)
         mrun[i].o0 = orun[(i + shift) % nor].o0;
         mrun[i].on = orun[(i + shift) % nor].on;
     }
-    /* dyadic grid */
-    {
-        int64_t mx = 1;
-        for (uint32_t v = 0; v < W->nv; v++) {
-            int64_t a = llabs(O->xy[2 * v]), b = llabs(O->xy[2 * v + 1]);
-            if (a > mx) mx = a;
-            if (b > mx) mx = b;
-        }
-        for (uint32_t l = 0; l < O->nlabels; l++) {
-            int64_t a = llabs(O->label_t[2 * l]) + llabs(O->label_t[2 * l + 1]);
-            if (a > mx) mx = a;
-        }
-        int e = 0;
-        frexp((double)(2 * mx + 2), &e);
-        c->dyadic = 50 - e + O->xy_shift; /* xy in units of 2^-xy_shift */
-        if (c->dyadic > 40) c->dyadic = 40;
-        if (c->dyadic < 8 || c->dyadic < O->xy_shift) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "domain too large for exact seams");
-            goto done;
-        }
+#undef OLABEL
+done:
+    free(orun);
+    if (st) free(mrun), mrun = NULL, nmr = 0;
+    *mrun_out = mrun, *nmr_out = nmr;
+    return st;
+}
+
+/* The dyadic grid of the seams' UVs: c->dyadic such that Omega's
+ * coordinates and translations (in units of 2^-xy_shift) times 2^dyadic
+ * stay below 2^50; at most 40; SQ_ERR_INTERNAL below 8 or xy_shift. */
+static sq_status choose_dyadic(ctx *c)
+{
+    const sq_omega *O = c->O;
+    const sq_metapolygon *W = &O->cut;
+    int64_t mx = 1;
+    for (uint32_t v = 0; v < W->nv; v++) {
+        int64_t a = llabs(O->xy[2 * v]), b = llabs(O->xy[2 * v + 1]);
+        if (a > mx) mx = a;
+        if (b > mx) mx = b;
     }
+    for (uint32_t l = 0; l < O->nlabels; l++) {
+        int64_t a = llabs(O->label_t[2 * l]) + llabs(O->label_t[2 * l + 1]);
+        if (a > mx) mx = a;
+    }
+    int e = 0;
+    frexp((double)(2 * mx + 2), &e);
+    c->dyadic = 50 - e + O->xy_shift; /* xy in units of 2^-xy_shift */
+    if (c->dyadic > 40) c->dyadic = 40;
+    if (c->dyadic < 8 || c->dyadic < O->xy_shift)
+        return sq_error_set(c->err, SQ_ERR_INTERNAL, "domain too large for exact seams");
+    return SQ_OK;
+}
+
+/* The runs' UVs: every primary run (label below its partner's) split at
+ * its Omega run's grid points and given UVs, then every partner run the
+ * exact transition of its primary's; c->o2m for Omega's boundary
+ * halfedges. */
+static sq_status map_runs(ctx *c, const uint32_t *oseq, uint32_t nb, const uint32_t *mseq, uint32_t nm,
+                          const run *mrun, uint32_t nmr)
+{
+    sq_tsurf *S = &c->S;
+    const sq_omega *O = c->O;
+    const sq_metapolygon *W = &O->cut;
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    uint32_t *pl = NULL, npl = 0, *matched = NULL, *uvv = NULL;
+    int64_t *g = NULL;
+    double *gfrac = NULL;
+    const double gs = ldexp(1.0, -O->xy_shift);
     /* run ends, before any split changes the halfedges' heads */
     uint32_t *run_end = malloc((size_t)nmr * sizeof *run_end);
     if (!run_end) {
@@ -368,16 +400,36 @@ sq_status sq_param_boundary_map(ctx *c)
     }
     for (uint32_t i = 0; i < nmr; i++) free(mlist[i]), free(mmatch[i]);
     free(mlist), free(mlen), free(mmatch), free(prim_of), free(run_end);
-#undef OLABEL
 done:
-    free(oseq);
-    free(mseq);
-    free(orun);
-    free(mrun);
     free(pl);
     free(matched);
     free(uvv);
     free(g);
     free(gfrac);
+    return st;
+}
+
+/* Step 5: Omega's and the surface's boundaries matched run by run
+ * (match_runs), the seams' dyadic grid chosen, the runs mapped (map_runs). */
+sq_status sq_param_boundary_map(ctx *c)
+{
+    const sq_metapolygon *W = &c->O->cut;
+    sq_error *err = c->err;
+    sq_status st = SQ_OK;
+    /* Omega: boundary face halfedges counterclockwise */
+    uint32_t nb = W->nbnd;
+    uint32_t *oseq = malloc((size_t)nb * sizeof *oseq);
+    uint32_t *mseq = NULL, nm = 0, nmr = 0;
+    run *mrun = NULL;
+    if (!oseq) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    if (sq_param_omega_boundary(W, oseq) == SQ_NONE)
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", nb);
+    if (st == SQ_OK) st = surface_boundary(c, &mseq, &nm);
+    if (st == SQ_OK) st = match_runs(c, oseq, nb, mseq, nm, &mrun, &nmr);
+    if (st == SQ_OK) st = choose_dyadic(c);
+    if (st == SQ_OK) st = map_runs(c, oseq, nb, mseq, nm, mrun, nmr);
+    free(oseq);
+    free(mseq);
+    free(mrun);
     return st;
 }
