@@ -209,6 +209,31 @@ static inline void transition(const sq_omega *O, uint32_t l, const double x[2], 
 /* segments of the cone tree (Q's, or the triangulated Q's) */
 static inline uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c->T->nseg; }
 
+/* ---- steps 1-3: the domain Q and Omega (sq_param.c) -------------------- */
+
+/* Genus >= 2 after Algorithm 1: qv[j] (D->ncones) the vertex of Q at the
+ * centre of the j-th irregular metapolygon face, the cone of step j. */
+sq_status sq_param_step_q_vertices(ctx *c, uint32_t *qv);
+/* c->D freed and replaced by D. */
+void sq_param_domain_replace(ctx *c, sq_domain *D);
+
+/* ---- the cone tree in Q (sq_param_tree.c) ------------------------------- */
+
+/* Seed 9.4, guided: the surface tree first (or both as one plane tree,
+ * SQ_TREE_PAIR), Q's tree c->T following it; c->q_branch, c->s_tree_next.
+ * SQ_ERR_SOLVER where either side is blocked. */
+sq_status sq_param_guided_tree(ctx *c);
+/* After Omega (guided tree): the surface tree's root path to the side
+ * standing for Q's root side; c->root_surface where it ends. */
+sq_status sq_param_guided_root(ctx *c);
+/* SQ_TREE_QTRI: the surface tree and its root path copied into Q
+ * triangulated, Omega laid out from that (c->O, c->qt_*). SQ_ERR_SOLVER
+ * where the surface tree leaves a cone unjoined (c->walled). */
+sq_status sq_param_qtri_tree(ctx *c);
+/* SQ_TREE_QTRI, genus >= 2: SQ_ERR_SOLVER unless the surface tree joins
+ * all n cones in the guided order (decided before the domain is built). */
+sq_status sq_param_qtri_joinable(ctx *c, uint32_t n);
+
 /* ---- step 4: the cut on the surface (sq_param.c) ---------------------- */
 
 /* The halfedges of the boundary run from halfedge h to vertex end_v
