@@ -209,7 +209,12 @@ static inline void transition(const sq_omega *O, uint32_t l, const double x[2], 
 /* segments of the cone tree (Q's, or the triangulated Q's) */
 static inline uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c->T->nseg; }
 
-/* ---- steps 1-3: the domain Q and Omega (sq_param.c) -------------------- */
+/* ---- steps 1-3: the domain Q and Omega (sq_param_domain.c) ------------- */
+
+/* Steps 1-3: the cut graph c->G, the domain Q c->D (guided: Algorithm 1,
+ * corners aligned), its cone tree and Omega c->O; st_out (may be NULL):
+ * sizes and times. */
+sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *st_out);
 
 /* Genus >= 2 after Algorithm 1: qv[j] (D->ncones) the vertex of Q at the
  * centre of the j-th irregular metapolygon face, the cone of step j. */
