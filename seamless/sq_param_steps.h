@@ -239,7 +239,20 @@ sq_status sq_param_qtri_tree(ctx *c);
  * all n cones in the guided order (decided before the domain is built). */
 sq_status sq_param_qtri_joinable(ctx *c, uint32_t n);
 
-/* ---- step 4: the cut on the surface (sq_param.c) ---------------------- */
+/* ---- step 4: the cut on the surface (sq_param_surface_cut.c) ---------- */
+
+/* The cut graph's sides on the surface c->S labelled with Omega's labels
+ * (hmap: m's halfedges in S); *root_he: where the cone tree starts. */
+sq_status sq_param_cut_surface(ctx *c, const uint32_t *hmap, uint32_t *root_he);
+/* Seed 9.2: c->q_target, the surface cone each cone of Q stands for (the
+ * steps' cones after Algorithm 1, else matched in the disk layouts). */
+sq_status sq_param_guide_targets(ctx *c);
+/* Seed 9.4: Q's cone tree replicated on the surface from root_he, cut and
+ * labelled as Omega's tree segments. */
+sq_status sq_param_replicate_tree(ctx *c, uint32_t root_he);
+/* SQ_TREE_QTRI: the surface tree's paths themselves cut and labelled as
+ * Omega's tree segments (no routing). */
+sq_status sq_param_qtri_surface_tree(ctx *c);
 
 /* The halfedges of the boundary run from halfedge h to vertex end_v
  * (after splits) into *out (the caller frees it), *n of them. */

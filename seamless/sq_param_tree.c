@@ -198,7 +198,7 @@ sq_status sq_param_guided_tree(ctx *c)
 
 /* After Omega (guided tree): the surface tree's root path to the surface
  * side standing for the side of Q that Q's root lies on, attached to the
- * surface tree; cut_surface puts the surface root where it ends. */
+ * surface tree; sq_param_cut_surface puts the surface root where it ends. */
 sq_status sq_param_guided_root(ctx *c)
 {
     const sq_omega *O = c->O;
