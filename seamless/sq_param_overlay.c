@@ -195,97 +195,106 @@ static void *fill_crossings(void *arg)
     return NULL;
 }
 
-/* Step 7' against one triangulation of Omega (omega_triangulation; C:
- * the chords' rectangles, or NULL: the unit squares): Omega on the disk
- * with A's boundary points, the overlay, and P from it. */
-static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *oseq, const sq_omega_cells *C,
-                              const int32_t *valence, sq_param *P, sq_param_stats *stats)
+/* Step 7', Omega's side: B, Omega triangulated (omega_triangulation),
+ * on the unit disk with A's boundary points. Ids: A's na first (B's
+ * boundary points are A's), then B's interior vertices up to nv. */
+typedef struct omega_disk {
+    uint32_t nv;
+    double *buv;          /* 2 nv: Omega's UVs (A's interior ones unused) */
+    sq_param_tri_list bt; /* B's triangles                               */
+    uint32_t *btw;        /* 3 bt.n: their twins                         */
+    double *xy;           /* 2 nv: disk positions                        */
+} omega_disk;
+
+static void omega_disk_free(omega_disk *B)
 {
-    sq_tsurf *S = &c->S;
+    free(B->bt.t), free(B->btw), free(B->xy), free(B->buv);
+    memset(B, 0, sizeof *B);
+}
+
+/* B for Omega triangulated in C's rectangles (NULL: in unit squares):
+ * every triangle positively oriented, a manifold disk, its interior on
+ * the disk by Tutte's map with weights from Omega's UVs. The caller frees
+ * B (omega_disk_free), also after a failure. */
+static sq_status omega_disk_build(ctx *c, const surface_disk *A, const uint32_t *oseq, const sq_omega_cells *C,
+                                  omega_disk *B)
+{
     sq_error *err = c->err;
-    uint32_t nbl = A->nbl, na = A->na, nv = 0;
-    double *xy = NULL, *p3 = NULL, *buv = NULL;
-    uint32_t *btw = NULL;
-    sq_param_tri_list bt = {0};
-    sq_overlay X;
-    sq_overlay_init(&X);
-    sq_status st = sq_param_omega_triangulation(c->O, C, nbl, na, A->wb, oseq, A->bstart, A->buv, &nv, &buv, &bt, err);
+    uint32_t nbl = A->nbl, na = A->na;
+    double *p3 = NULL;
+    memset(B, 0, sizeof *B);
+    sq_status st = sq_param_omega_triangulation(c->O, C, nbl, na, A->wb, oseq, A->bstart, A->buv, &B->nv, &B->buv,
+                                                &B->bt, err);
     if (st) goto done;
-    const uint32_t *btri = bt.t;
-    uint32_t nbt = bt.n;
+    const uint32_t nv = B->nv, *btri = B->bt.t;
+    const double *buv = B->buv;
+    uint32_t nbt = B->bt.n;
     for (uint32_t g = 0; g < nbt; g++)
         if (sq_orient2d(buv + 2 * (size_t)btri[3 * g], buv + 2 * (size_t)btri[3 * g + 1], buv + 2 * (size_t)btri[3 * g + 2]) <= 0) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangle %u is not positively oriented", g);
             goto done;
         }
-    xy = malloc(2 * (size_t)nv * sizeof *xy);
+    B->xy = malloc(2 * (size_t)nv * sizeof *B->xy);
     p3 = calloc(3 * (size_t)nv, sizeof *p3);
-    btw = malloc(3 * (size_t)nbt * sizeof *btw);
-    if (!xy || !p3 || !btw) {
+    B->btw = malloc(3 * (size_t)nbt * sizeof *B->btw);
+    if (!B->xy || !p3 || !B->btw) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    if (sq_param_pair_twins(nbt, btri, btw)) {
+    if (sq_param_pair_twins(nbt, btri, B->btw)) {
         st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangulation is not a manifold disk");
         goto done;
     }
     /* B on the disk: A's positions for the shared boundary, Tutte inside
      * with weights from Omega's geometry (its UVs, flat) */
-    memcpy(xy, A->xy, 2 * (size_t)na * sizeof *xy);
+    memcpy(B->xy, A->xy, 2 * (size_t)na * sizeof *B->xy);
     for (uint32_t i = 0; i < nv; i++)
         if (i < nbl || i >= na) p3[3 * (size_t)i] = buv[2 * i], p3[3 * (size_t)i + 1] = buv[2 * i + 1];
-    st = sq_param_disk_tutte(nbt, btri, btw, na, nv - na, p3, xy, err);
+    st = sq_param_disk_tutte(nbt, btri, B->btw, na, nv - na, p3, B->xy, err);
     if (st == SQ_OK) st = stop_if_cancelled(c);
-    if (st) goto done;
-    sq_overlay_mesh Am = {A->nf, A->tri, A->twin}, Bm = {nbt, btri, btw};
-    progress(c, "overlay", 0.75);
-    /* in two threads where the caller allows them (the same result) */
-    const uint64_t budget = c->opt->max_crossings ? c->opt->max_crossings
-                            : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
-                                                  : steiner_budget(c);
-    /* given up at once where the sample expects a quarter more than the
-     * budget (the overlay's rule) or more than the variants' gate; a
-     * failure counts as the gate's where the gate is below the former */
-    st = sq_overlay_build_threads(nbl, na, nv, xy, &Am, &Bm, budget, c->gate ? c->gate : UINT64_MAX,
-                                  c->opt->threads ? c->opt->threads : 1, c->cancel, c->limit, &X, err);
-    stats->crossings_expected = X.expected;
-    stats->gated = st == SQ_ERR_SOLVER && c->gate && c->gate < budget + budget / 4 && X.expected > c->gate;
-    if (cancelled(c)) st = stop_if_cancelled(c);
-    if (st) goto done;
-    stats->crossings = X.nx;
-    stats->fan_vertices = A->na - A->ns;
+done:
+    free(p3);
+    return st;
+}
+
+/* P from the overlay X of A and B: positions, UVs, triangles, their input
+ * faces and cut halfedges, valences (not yet the twins and seams). */
+static sq_status overlay_output(ctx *c, const surface_disk *A, const omega_disk *B, const sq_overlay *X,
+                                const int32_t *valence, sq_param *P)
+{
+    sq_tsurf *S = &c->S;
+    const uint32_t nbl = A->nbl, na = A->na, nv = B->nv, *btri = B->bt.t;
+    const double *buv = B->buv;
     /* the output: S's vertices, then the fans' and B's interior vertices
      * (ids from ns on), then the crossings */
     const uint32_t ns = A->ns;
-    uint32_t nout = S->nv + (nv - ns) + X.nx;
-    P->nv = nout, P->nf = X.ntri, P->nv_input = S->nv_input, P->nuv = nv + X.nx;
+    uint32_t nout = S->nv + (nv - ns) + X->nx;
+    P->nv = nout, P->nf = X->ntri, P->nv_input = S->nv_input, P->nuv = nv + X->nx;
     P->pos = malloc(3 * (size_t)nout * sizeof *P->pos);
     P->uv = malloc(2 * (size_t)P->nuv * sizeof *P->uv);
-    P->tri = malloc(3 * (size_t)X.ntri * sizeof *P->tri);
-    P->tri_uv = malloc(3 * (size_t)X.ntri * sizeof *P->tri_uv);
-    P->he_seam = malloc(3 * (size_t)X.ntri);
-    P->he_cut = malloc(3 * (size_t)X.ntri);
-    P->tri_in = malloc((size_t)X.ntri * sizeof *P->tri_in);
+    P->tri = malloc(3 * (size_t)X->ntri * sizeof *P->tri);
+    P->tri_uv = malloc(3 * (size_t)X->ntri * sizeof *P->tri_uv);
+    P->he_seam = malloc(3 * (size_t)X->ntri);
+    P->he_cut = malloc(3 * (size_t)X->ntri);
+    P->tri_in = malloc((size_t)X->ntri * sizeof *P->tri_in);
     P->valence = malloc((size_t)S->nv_input * sizeof *P->valence);
-    if (!P->pos || !P->uv || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->tri_in || !P->valence) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
+    if (!P->pos || !P->uv || !P->tri || !P->tri_uv || !P->he_seam || !P->he_cut || !P->tri_in || !P->valence)
+        return sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     const uint32_t *a2s = A->a2s, *atri = A->tri;
     const double *ap3 = A->p3;
     memcpy(P->pos, S->pos, 3 * (size_t)S->nv * sizeof *P->pos);
     for (uint32_t i = ns; i < na; i++) memcpy(P->pos + 3 * ((size_t)S->nv + i - ns), ap3 + 3 * (size_t)i, 3 * sizeof *P->pos);
     memcpy(P->valence, valence, (size_t)S->nv_input * sizeof *P->valence);
     for (uint32_t i = na; i < nv; i++) {
-        const uint32_t *t = atri + 3 * (size_t)X.loc[i];
-        const double *l = X.bary + 3 * (size_t)i;
+        const uint32_t *t = atri + 3 * (size_t)X->loc[i];
+        const double *l = X->bary + 3 * (size_t)i;
         double *p = P->pos + 3 * ((size_t)S->nv + i - ns);
         for (int d = 0; d < 3; d++)
             p[d] = l[0] * ap3[3 * (size_t)t[0] + d] + l[1] * ap3[3 * (size_t)t[1] + d] + l[2] * ap3[3 * (size_t)t[2] + d];
     }
     /* the crossings' points and UVs beside the triangles below (in a thread
      * of their own where allowed: they write other arrays) */
-    cross_fill cf = {&X, ap3, buv, atri, btri, P->pos + 3 * ((size_t)S->nv + nv - ns), P->uv + 2 * (size_t)nv};
+    cross_fill cf = {X, ap3, buv, atri, btri, P->pos + 3 * ((size_t)S->nv + nv - ns), P->uv + 2 * (size_t)nv};
     pthread_t cf_th;
     int cf_helper = c->opt->threads > 1 && pthread_create(&cf_th, NULL, fill_crossings, &cf) == 0;
     if (!cf_helper) fill_crossings(&cf);
@@ -294,38 +303,41 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     memcpy(P->uv, buv, 2 * (size_t)nbl * sizeof *P->uv);
     memcpy(P->uv + 2 * (size_t)na, buv + 2 * (size_t)na, 2 * (size_t)(nv - na) * sizeof *P->uv);
     for (uint32_t i = nbl; i < na; i++) {
-        const uint32_t *t = btri + 3 * (size_t)X.loc[i];
-        const double *l = X.bary + 3 * (size_t)i;
+        const uint32_t *t = btri + 3 * (size_t)X->loc[i];
+        const double *l = X->bary + 3 * (size_t)i;
         for (int d = 0; d < 2; d++)
             P->uv[2 * (size_t)i + d] = l[0] * buv[2 * (size_t)t[0] + d] + l[1] * buv[2 * (size_t)t[1] + d] +
                                        l[2] * buv[2 * (size_t)t[2] + d];
     }
-    for (uint32_t f = 0; f < X.ntri; f++) P->tri_in[f] = A->fin[X.tri_fa[f]];
-    for (uint32_t f = 0; f < X.ntri; f++)
+    for (uint32_t f = 0; f < X->ntri; f++) P->tri_in[f] = A->fin[X->tri_fa[f]];
+    for (uint32_t f = 0; f < X->ntri; f++)
         for (int i = 0; i < 3; i++) {
-            uint32_t o = X.tri[3 * (size_t)f + i];
+            uint32_t o = X->tri[3 * (size_t)f + i];
             P->tri_uv[3 * (size_t)f + i] = o;
             P->tri[3 * (size_t)f + i] = o < ns ? a2s[o] : S->nv + (o - ns);
-            uint32_t o1 = X.tri[3 * (size_t)f + (i + 1) % 3];
+            uint32_t o1 = X->tri[3 * (size_t)f + (i + 1) % 3];
             P->he_cut[3 * (size_t)f + i] = o < nbl && o1 == (o + 1) % nbl ? S->kind[A->mseq[o]] : 0;
         }
     if (cf_helper) pthread_join(cf_th, NULL);
+    return SQ_OK;
+}
+
+/* P's twins and seams (the refined surface closed), every UV triangle's
+ * orientation checked exactly; stats: sizes (and distortion unless
+ * distortion_later). */
+static sq_status overlay_check(ctx *c, sq_param *P, sq_param_stats *stats)
+{
+    sq_error *err = c->err;
     /* the seams from the output's twins (corner k's edge against the one
      * across it; every edge with exactly two triangles, opposite: the
      * refined surface is closed; sq_param_verify checks the whole mesh of
      * the final map) */
-    P->he_twin = malloc(3 * (size_t)X.ntri * sizeof *P->he_twin);
-    if (!P->he_twin) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    int pr = sq_param_pair_twins_threads(X.ntri, P->tri, P->he_twin, c->opt->threads);
-    if (pr == -1) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
+    P->he_twin = malloc(3 * (size_t)P->nf * sizeof *P->he_twin);
+    if (!P->he_twin) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    int pr = sq_param_pair_twins_threads(P->nf, P->tri, P->he_twin, c->opt->threads);
+    if (pr == -1) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
     uint32_t seams = 0, bad = 0, first = SQ_NONE;
-    for (uint32_t k = 0; k < 3 * X.ntri && !pr; k++) {
+    for (uint32_t k = 0; k < 3 * P->nf && !pr; k++) {
         uint32_t g = P->he_twin[k];
         if (g == SQ_NONE) {
             pr = -3;
@@ -335,12 +347,10 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
                         P->tri_uv[sq_param_corner_next(k)] != P->tri_uv[g];
         if (P->he_seam[k] && k < g) seams++;
     }
-    if (pr) {
-        st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the refined surface is not closed: an edge %s",
-                          pr == -3 ? "with one triangle" : "with more than two triangles, or two in one direction");
-        goto done;
-    }
-    for (uint32_t f = 0; f < X.ntri; f++)
+    if (pr)
+        return sq_error_set(err, SQ_ERR_INTERNAL, "overlay: the refined surface is not closed: an edge %s",
+                            pr == -3 ? "with one triangle" : "with more than two triangles, or two in one direction");
+    for (uint32_t f = 0; f < P->nf; f++)
         if (sq_orient2d(P->uv + 2 * (size_t)P->tri_uv[3 * f], P->uv + 2 * (size_t)P->tri_uv[3 * f + 1],
                         P->uv + 2 * (size_t)P->tri_uv[3 * f + 2]) <= 0) {
             if (first == SQ_NONE) first = f;
@@ -352,13 +362,47 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     stats->seam_edges = seams;
     if (!bad && !distortion_later(c)) sq_param_distortion(P, stats);
     if (bad && !c->keep_flips)
-        st = sq_error_set(err, SQ_ERR_SOLVER,
-                          "the interior map (overlay) is not injective in floating point: %u of %u UV "
-                          "triangles are not positively oriented (first: face %u)",
-                          bad, P->nf, first);
+        return sq_error_set(err, SQ_ERR_SOLVER,
+                            "the interior map (overlay) is not injective in floating point: %u of %u UV "
+                            "triangles are not positively oriented (first: face %u)",
+                            bad, P->nf, first);
+    return SQ_OK;
+}
+
+/* Step 7' against one triangulation of Omega (omega_triangulation; C:
+ * the chords' rectangles, or NULL: the unit squares): Omega on the disk
+ * with A's boundary points (omega_disk_build), the overlay, and P from it
+ * (overlay_output, overlay_check). */
+static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *oseq, const sq_omega_cells *C,
+                              const int32_t *valence, sq_param *P, sq_param_stats *stats)
+{
+    omega_disk B;
+    sq_overlay X;
+    sq_overlay_init(&X);
+    sq_status st = omega_disk_build(c, A, oseq, C, &B);
+    if (st) goto done;
+    sq_overlay_mesh Am = {A->nf, A->tri, A->twin}, Bm = {B.bt.n, B.bt.t, B.btw};
+    progress(c, "overlay", 0.75);
+    /* in two threads where the caller allows them (the same result) */
+    const uint64_t budget = c->opt->max_crossings ? c->opt->max_crossings
+                            : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
+                                                  : steiner_budget(c);
+    /* given up at once where the sample expects a quarter more than the
+     * budget (the overlay's rule) or more than the variants' gate; a
+     * failure counts as the gate's where the gate is below the former */
+    st = sq_overlay_build_threads(A->nbl, A->na, B.nv, B.xy, &Am, &Bm, budget, c->gate ? c->gate : UINT64_MAX,
+                                  c->opt->threads ? c->opt->threads : 1, c->cancel, c->limit, &X, c->err);
+    stats->crossings_expected = X.expected;
+    stats->gated = st == SQ_ERR_SOLVER && c->gate && c->gate < budget + budget / 4 && X.expected > c->gate;
+    if (cancelled(c)) st = stop_if_cancelled(c);
+    if (st) goto done;
+    stats->crossings = X.nx;
+    stats->fan_vertices = A->na - A->ns;
+    st = overlay_output(c, A, &B, &X, valence, P);
+    if (st == SQ_OK) st = overlay_check(c, P, stats);
 done:
     sq_overlay_free(&X);
-    free(bt.t), free(btw), free(xy), free(p3), free(buv);
+    omega_disk_free(&B);
     return st;
 }
 
