@@ -1,31 +1,18 @@
 /* seamquad: seamless parametrization of a closed surface (sq_param.h;
  * seed 7 "Compatible Cutting", seed 8 "Bijective Parametrization",
- * seamless-notes 5; docs/param.md). */
-#include "sq_clock.h"
-#include "sq_param.h"
-#include "sq_param_internal.h"
-#include "sq_param_steps.h"
-
-#include <assert.h>
-#include <math.h>
-#include <pthread.h>
+ * seamless-notes 5; docs/param.md): one attempt, its steps in order
+ * (build_once; the steps in the files sq_param_steps.h lists), with the
+ * walled cones' edge splits (build_walled) and the domain variants
+ * (sq_param_build_once). */
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "sq_cones.h"
-#include "sq_cut_graph.h"
-#include "sq_domain.h"
-#include "sq_guide.h"
-#include "sq_mean_value.h"
-#include "sq_omega.h"
-#include "sq_qtri.h"
-#include "sq_omega_cells.h"
-#include "sq_overlay.h"
-#include "sq_predicates.h"
-#include "sq_sparse.h"
-#include "sq_tsurf.h"
+#include "sq_clock.h"
+#include "sq_param.h"
+#include "sq_param_internal.h"
+#include "sq_param_steps.h"
 
 void sq_param_options_default(sq_param_options *opt)
 {
