@@ -50,7 +50,7 @@ typedef struct ctx {
     sq_cut_graph G;      /* the cut graph on m (seed 7, 9.1)               */
     sq_pattern pcw;      /* the cut disk's word read clockwise            */
     uint32_t k, r;       /* sides; Q side i = clockwise side (i + r) % k   */
-    sq_domain *D;        /* the domain Q (seed 6-7)                        */
+    sq_domain *D;        /* the domain Q                                   */
     sq_cone_tree *T;     /* Q's cone tree (unused with qtri)               */
     sq_omega *O;         /* the flat domain Omega                          */
     sq_omega_cells C;    /* Omega's cells, the chords' rectangles (6-7c)   */
@@ -216,8 +216,8 @@ static inline uint32_t tree_nseg(const ctx *c) { return c->qtri ? c->qt_nseg : c
  * sizes and times. */
 sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *st_out);
 
-/* Genus >= 2 after Algorithm 1: qv[j] (D->ncones) the vertex of Q at the
- * centre of the j-th irregular metapolygon face, the cone of step j. */
+/* After Algorithm 1: qv[j] (D->ncones) the vertex of Q at the centre of
+ * the j-th irregular metapolygon face, the cone of step j. */
 sq_status sq_param_step_q_vertices(ctx *c, uint32_t *qv);
 /* c->D freed and replaced by D. */
 void sq_param_domain_replace(ctx *c, sq_domain *D);
