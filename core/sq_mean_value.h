@@ -1,5 +1,5 @@
 /* seamquad: the mean-value weight of Floater (2003), shared by every Tutte
- * map of a triangle surface (the interior map of sq_param.c, the disk
+ * map of a triangle surface (the interior map of sq_param_interior.c, the disk
  * layout of sq_guide_surface_disk.c, quantization's patch fallback in
  * sq_patch_embed.c). Positive for every non-degenerate pair of triangles,
  * so Tutte's theorem applies. */

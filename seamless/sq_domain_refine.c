@@ -5,7 +5,7 @@
  * metapolygon, the cones and the side pattern are unchanged; Q's vertices
  * keep their indices (new ones come after them), and the quads of old quad
  * f are 4f .. 4f+3. Used where a path of the cone tree needs room between
- * two others that Q's grid does not have (sq_param.c, guided tree). */
+ * two others that Q's grid does not have (sq_param_tree.c, guided tree). */
 #include <stdlib.h>
 #include <string.h>
 

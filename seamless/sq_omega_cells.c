@@ -32,7 +32,7 @@
  * chords), again until every cell fits its limit. Such a chord splits a
  * rectangle into two rectangles, so the argument above still holds. The
  * surface stage asks for it where Tutte's map of a cell failed
- * (sq_param.c, step 7c).
+ * (sq_param_interior.c, step 7c).
  *
  * Rotation around a vertex v (faces counterclockwise, sq_metapolygon.h):
  * for a face halfedge h leaving v, twin(prev(h)) is the next outgoing

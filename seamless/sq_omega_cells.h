@@ -13,7 +13,7 @@
  * hence an embedded axis-aligned rectangle even where Omega overlaps
  * itself.
  *
- * The surface stage (sq_param.c) replays the chords, in this order, as paths
+ * The surface stage (sq_param_interior.c) replays the chords, in this order, as paths
  * on the cut surface and maps every surface cell onto its rectangle (Tutte,
  * convex target). For that replay a chord names its two ends by the
  * halfedge that bounds the end's sector on its clockwise side, at the

@@ -1,5 +1,5 @@
 /* seamquad: Tutte's map of an open triangulated disk (step 7', the
- * overlay's two disk maps; sq_param.c). */
+ * overlay's two disk maps; sq_param_overlay.c). */
 #include <pthread.h>
 #include <stdlib.h>
 

@@ -1,5 +1,5 @@
 /* seamquad: graded fans along the cut of the overlay's surface disk
- * (step 7', sq_param.c; sq_param_internal.h).
+ * (step 7', sq_param_overlay.c; sq_param_internal.h).
  *
  * The cut surface's boundary carries a vertex at every boundary vertex of
  * Omega (so that both disks share their boundary points), which splits an

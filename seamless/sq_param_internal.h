@@ -40,7 +40,7 @@ uint64_t sq_param_crossing_budget(const sq_param_options *opt, uint32_t nv, uint
 const char *sq_param_valence_colour(int32_t k);
 
 /* The distortion statistics of P into stats (sym_dirichlet_*,
- * conformal_*; sq_param.c). */
+ * conformal_*; sq_param_assemble.c). */
 void sq_param_distortion(const sq_param *P, sq_param_stats *stats);
 
 /* The next and the previous corner of corner c in its triangle (corners
@@ -48,7 +48,7 @@ void sq_param_distortion(const sq_param *P, sq_param_stats *stats);
 static inline uint32_t sq_param_corner_next(uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
 static inline uint32_t sq_param_corner_prev(uint32_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
 
-/* ---- step 7' (the overlay; sq_param.c) ---------------------------------- */
+/* ---- step 7' (the overlay; sq_param_overlay.c) -------------------------- */
 
 /* Twins of a triangle list by vertex pairs (sorting): twin[3 f + i] is the
  * halfedge running the other way, SQ_NONE when it has none. 0; -1: out of

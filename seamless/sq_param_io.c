@@ -1,10 +1,10 @@
 /* seamquad: independent check and output of a seamless parametrization
  * (sq_param.h): sq_param_verify, sq_param_write_obj, sq_param_write_svg.
  *
- * The check shares no code with the construction (sq_param.c): it rebuilds
- * the halfedge mesh from P->tri with the core validator, then decides every
- * property on the stored doubles, exactly where the issue asks for
- * exactness (seed 7-9; issue 4 (a)-(c)):
+ * The check shares no code with the construction (sq_param.c and its step
+ * files, sq_param_steps.h): it rebuilds the halfedge mesh from P->tri with
+ * the core validator, then decides every property on the stored doubles,
+ * exactly where the issue asks for exactness (seed 7-9; issue 4 (a)-(c)):
  *  - orientation: sq_orient2d (exact predicate) on every UV triangle;
  *  - seams: the two UV copies (p_a, p_b) and (q_a, q_b) of an edge are
  *    related by q = R p + t with R a rotation by r x 90 degrees iff

@@ -1,4 +1,4 @@
-/* seamquad: Omega triangulated for the overlay (step 7'; sq_param.c):
+/* seamquad: Omega triangulated for the overlay (step 7'; sq_param_overlay.c):
  * each unit square (or each chords' rectangle) fanned from its centre, its
  * boundary edges split at the surface's boundary vertices, graded layers
  * where a side carries many of them. */
