@@ -117,8 +117,8 @@ typedef struct sq_param_options {
      * triangles along the cut (an input edge on the cut split at Omega's
      * boundary points, every piece joined to the opposite vertex) are
      * replaced by graded triangulations of the same polygons before the
-     * disk map (sq_param_grade_fans): far fewer crossings (mpz/elk 45%,
-     * cid/elephant 30%), the same guarantees. SQ_FANS_OFF: the fans as
+     * disk map (sq_param_grade_fans): far fewer crossings (cid/elephant
+     * 30%, mpz/elk 29%), the same guarantees. SQ_FANS_OFF: the fans as
      * they are. */
     int fans;
     /* Tree qtri (genus >= 1, so the fallback): Algorithm 1's ties broken
@@ -369,7 +369,8 @@ sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_pa
  * first. Per cell: its rectangle in UV and the surface (3D) length of its
  * boundary on each side of the rectangle: a surface cell whose sides
  * differ wildly from the rectangle's, or that runs along one side twice,
- * is what Tutte's map squeezes (docs/param.md, Status). */
+ * is what Tutte's map squeezes (docs/param.md, "Pictures and
+ * diagnosis"). */
 typedef struct sq_param_cell {
     uint32_t faces, bad;         /* triangles, of them not positive      */
     uint32_t first_bad;          /* a bad face                           */

@@ -264,19 +264,18 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
      * attempt, the fallback's first, the default choices' others up to
      * SQ_FALLBACK_AFTER, the fallback's others (at most
      * SQ_FALLBACK_ATTEMPTS in all, from the same seed), then the default
-     * choices' other attempts. Where the first two default attempts fail,
-     * the later ones rarely pass (block at the 15th, fertility_tri at the
-     * 7th, femur at the 3rd; elephant at none of 16, which cost it 36 to
-     * 54 s before the fallback), and the fallback's maps are far less
+     * choices' other attempts. Why: where the first two default attempts
+     * fail, the later ones rarely pass (with the fallback off: block at
+     * the 15th, fertility_tri at the 7th, femur at the 3rd; elephant at
+     * none of 16, 36 to 54 s spent), and the fallback's maps are far less
      * distorted (mean conformal ratio 129 against 3.7e8 on block;
      * docs/param.md). One ordered list on the threads: with two, the
      * fallback's first attempt runs beside the default choices' first
-     * from the start (elephant: 19 -> 15 s, the same map),
-     * and the result is still the lowest that passes. The fallback's
-     * attempts are heavy (each may hold a gigabyte and use both
-     * threads): nothing starts beside one (elephant: 15 -> 13 s, its
-     * default attempts 2 and 3 no longer run beside the fallback's first,
-     * which passes). */
+     * from the start, and the result is still the lowest that passes.
+     * The fallback's attempts are heavy (each may hold a gigabyte and use
+     * both threads): nothing starts beside one, so on elephant the
+     * default attempts 2 and 3 do not compete with the fallback's first,
+     * which passes. */
     const int fb = uses_fallback(&o, sq_mesh_genus(m));
     const uint32_t first = fb && n > SQ_FALLBACK_AFTER ? SQ_FALLBACK_AFTER : n;
     const uint32_t nfb = fb ? (n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS) : 0;

@@ -6,7 +6,8 @@
  * shape on the surface differs so much from its rectangle that Tutte
  * squeezes part of it below the rounding step. Showing those cells (their
  * rectangle, the surface length of each side, the picture on the surface
- * and in UV) is how such failures are understood (docs/param.md, Status).
+ * and in UV) is how such failures are understood (docs/param.md,
+ * "Pictures and diagnosis").
  * The cells are recovered from the output alone: faces joined across edges
  * that are neither cut nor chord (P->he_cut), on the halfedge mesh of the
  * output's triangles (sq_param_mesh: halfedge c = corner c). */

@@ -58,7 +58,7 @@ while IFS=$'\t' read -r file _ _ _ _ _ _ closed genus cones _; do
     continue
   fi
   if [ $rc -ne 0 ]; then
-    # Known limit until geometric guidance (seed 9) lands: the interior map
+    # Known limit (docs/param.md, "Limits"): the interior map
     # may be impossible in doubles, or the cut may need too many Steiner
     # vertices. Then the run must fail cleanly: exit 3, that message, and
     # nothing written. Models in $must_pass must succeed.

@@ -2,7 +2,7 @@
  * cone files, checked by our own verifier and by the independent referee
  * (../shared/tools/check_param.py).
  *
- * What must hold today (docs/param.md, "Status"):
+ * What must hold (docs/param.md, "Results"):
  * - mpz/eight (seed 1) and mpz/cup (seed 3, with the seed 9.2 guidance and
  *   the seed 9.4 tree that are the default for genus >= 2; without them the
  *   same cut fails): seamless
