@@ -9,8 +9,8 @@
  *
  * over nblock parameter blocks of block_size doubles each. Residual block r
  * depends on the parameter blocks res_param[res_off[r] .. res_off[r+1]-1]
- * (distinct) and has res_dim[r] components, computed by the C callback
- * `residual`; Ceres differentiates it numerically (central differences).
+ * (distinct) and has res_dim[r] components, computed with their
+ * derivatives by the C callback `residual`.
  *
  * Feasibility: constraint block c over the parameter blocks
  * con_param[con_off[c] .. con_off[c+1]-1] is a predicate `feasible`. A trial
@@ -29,8 +29,12 @@ extern "C" {
 #endif
 
 /* Residuals of block `r` at the given parameter blocks (param[i] points to
- * block_size doubles). Returns 1 on success, 0 when undefined there. */
-typedef int (*sq_nlls_residual_fn)(void *user, uint32_t r, const double *const *param, double *residual);
+ * block_size doubles) and, when jac is not NULL, their derivatives: jac[i]
+ * (when not NULL) gets the res_dim[r] x block_size matrix, row-major, of
+ * the residuals' derivatives by the i-th parameter block of r. Returns 1 on
+ * success, 0 when undefined there. */
+typedef int (*sq_nlls_residual_fn)(void *user, uint32_t r, const double *const *param, double *residual,
+                                   double **jac);
 
 /* 1 when the parameter blocks of constraint block `c` are feasible. */
 typedef int (*sq_nlls_feasible_fn)(void *user, uint32_t c, const double *const *param);
@@ -55,7 +59,6 @@ typedef struct sq_nlls_options {
     double function_tolerance;  /* relative cost decrease to stop          */
     double gradient_tolerance;  /* max-norm of the projected gradient      */
     double parameter_tolerance; /* relative step size                      */
-    double diff_step;           /* relative step of numeric differentiation */
     int num_threads;            /* >= 1; callbacks must be thread-safe if > 1 */
 } sq_nlls_options;
 
@@ -68,11 +71,11 @@ typedef struct sq_nlls_summary {
     char message[256];          /* Ceres' termination message              */
 } sq_nlls_summary;
 
-/* Defaults: 50 iterations, tolerances 1e-8, 1e-10, 1e-8, diff step 1e-6, 1 thread. */
+/* Defaults: 50 iterations, tolerances 1e-8, 1e-10, 1e-8, 1 thread. */
 void sq_nlls_options_default(sq_nlls_options *o);
 
-/* Solves with Levenberg-Marquardt and a sparse normal-equations Cholesky
- * (SuiteSparse CHOLMOD when Ceres has it, else Eigen's sparse Cholesky).
+/* Solves with Levenberg-Marquardt, each step's normal equations by
+ * conjugate gradients with a block Jacobi preconditioner (Ceres' CGNR).
  * SQ_ERR_SOLVER when Ceres fails (e.g. infeasible or undefined start). */
 sq_status sq_nlls_solve(const sq_nlls_problem *p, const sq_nlls_options *o, sq_nlls_summary *s,
                         sq_error *err);

@@ -219,7 +219,8 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
     }
     memset(s->x, 0, 2 * (size_t)s->nv * sizeof(double));
     sq_nlls_problem p = {s->nv, 2, s->x, nres, s->res_off, s->res_param, s->res_dim,
-                         sq_smooth_residual_cb, ncon, con_off, con_param, sq_smooth_feasible_cb, &s->ctx};
+                         sq_smooth_residual_cb, ncon, con_off, con_param,
+                         sq_smooth_feasible_cb, &s->ctx};
     sq_nlls_options no;
     sq_nlls_options_default(&no);
     no.max_iterations = o->solver_iterations;

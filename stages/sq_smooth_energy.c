@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "sq_smooth_internal.h"
 
@@ -107,11 +108,56 @@ static void tangent_position(const sq_smooth_ctx *c, uint32_t v, const double *a
     for (int k = 0; k < 3; k++) x[k] = p[k] + s * (ab[0] * f[k] + ab[1] * f[3 + k]);
 }
 
-int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, double *r)
+/* Derivatives of the quad's angle and length residuals (r[0..7]) by its
+ * corner positions: G[i][3 k + d] = d r_i / d x_k[d]. Corner k's angle
+ * theta = atan2(Y, X), X = u.w, Y = (u x w).n (u = x_{k+1} - x_k, w =
+ * x_{k-1} - x_k, n fixed): d theta = (X dY - Y dX) / (X^2 + Y^2), with
+ * dX = du.w + u.dw and dY = du.(w x n) + dw.(n x u). Edge k's log length
+ * L_k = log |e_k| has gradient e_k / |e_k|^2 at x_{k+1} and its opposite at
+ * x_k; residual 4 + k is L_k minus the mean of the four. */
+static void shape_gradient(const sq_smooth_ctx *c, uint32_t q, const double *const x[4], double G[8][12])
+{
+    const double *n = c->ref_normal + 3 * (size_t)q;
+    double e[4][3], gl[4][3];
+    memset(G, 0, 8 * sizeof G[0]);
+    for (int k = 0; k < 4; k++) {
+        sub3(x[(k + 1) % 4], x[k], e[k]);
+        double l2 = dot3(e[k], e[k]);
+        for (int d = 0; d < 3; d++) gl[k][d] = e[k][d] / l2;
+    }
+    for (int k = 0; k < 4; k++) {
+        int kn = (k + 1) % 4, kp = (k + 3) % 4;
+        const double *u = e[k];
+        double w[3] = {-e[kp][0], -e[kp][1], -e[kp][2]}, cr[3], wn[3], nu[3];
+        cross3(u, w, cr);
+        double X = dot3(u, w), Y = dot3(cr, n), s = c->wa / (X * X + Y * Y);
+        cross3(w, n, wn);
+        cross3(n, u, nu);
+        for (int d = 0; d < 3; d++) {
+            double gn = s * (X * wn[d] - Y * w[d]); /* by x_{k+1} */
+            double gp = s * (X * nu[d] - Y * u[d]); /* by x_{k-1} */
+            G[k][3 * kn + d] += gn;
+            G[k][3 * kp + d] += gp;
+            G[k][3 * k + d] -= gn + gp;
+        }
+        /* length residual k: grad L_k - mean_j grad L_j */
+        for (int j = 0; j < 4; j++) {
+            double a = c->wl * ((j == k) - 0.25);
+            int jn = (j + 1) % 4;
+            for (int d = 0; d < 3; d++) {
+                G[4 + k][3 * jn + d] += a * gl[j][d];
+                G[4 + k][3 * j + d] -= a * gl[j][d];
+            }
+        }
+    }
+}
+
+int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, double *r, double **jac)
 {
     const sq_smooth_ctx *c = user;
     if (q >= c->nq) { /* damping block of vertex q - nq */
         r[0] = c->damping * param[0][0], r[1] = c->damping * param[0][1];
+        if (jac && jac[0]) jac[0][0] = c->damping, jac[0][1] = 0.0, jac[0][2] = 0.0, jac[0][3] = c->damping;
         return 1;
     }
     double xs[4][3];
@@ -120,7 +166,47 @@ int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, do
         tangent_position(c, c->quads[4 * (size_t)q + k], param[k], xs[k]);
         x[k] = xs[k];
     }
-    return sq_smooth_quad_residuals(c, q, x, r);
+    if (!sq_smooth_quad_residuals(c, q, x, r)) return 0;
+    if (!jac) return 1;
+    uint32_t nr = sq_smooth_residual_count(c, q);
+    double G[8][12];
+    shape_gradient(c, q, x, G);
+    for (int k = 0; k < 4; k++) {
+        if (!jac[k]) continue;
+        uint32_t v = c->quads[4 * (size_t)q + k];
+        const double *f = c->frame + 9 * (size_t)v;
+        double h = c->h[v];
+        for (int i = 0; i < 8; i++) {
+            jac[k][2 * i] = h * dot3(G[i] + 3 * k, f);
+            jac[k][2 * i + 1] = h * dot3(G[i] + 3 * k, f + 3);
+        }
+        for (uint32_t i = 8; i < nr; i++) jac[k][2 * i] = jac[k][2 * i + 1] = 0.0;
+    }
+    /* The barrier and untangling residuals act only near a fold or while
+     * untangling: there, central differences in the parameters (Ceres'
+     * relative step); a side where the residuals are undefined (the margin
+     * at its threshold) gives a one-sided difference. */
+    if (nr == 9 && r[8] == 0.0) return 1;
+    for (int k = 0; k < 4; k++) {
+        if (!jac[k]) continue;
+        for (int d = 0; d < 2; d++) {
+            double ab[2] = {param[k][0], param[k][1]}, rp[SQ_SMOOTH_MAX_RES], rm[SQ_SMOOTH_MAX_RES];
+            double eps = 1e-6 * fmax(1.0, fabs(ab[d])), x0 = ab[d];
+            ab[d] = x0 + eps;
+            tangent_position(c, c->quads[4 * (size_t)q + k], ab, xs[k]);
+            int okp = sq_smooth_quad_residuals(c, q, x, rp);
+            ab[d] = x0 - eps;
+            tangent_position(c, c->quads[4 * (size_t)q + k], ab, xs[k]);
+            int okm = sq_smooth_quad_residuals(c, q, x, rm);
+            tangent_position(c, c->quads[4 * (size_t)q + k], param[k], xs[k]);
+            for (uint32_t i = 8; i < nr; i++)
+                jac[k][2 * i + d] = okp && okm ? (rp[i] - rm[i]) / (2 * eps)
+                                  : okp        ? (rp[i] - r[i]) / eps
+                                  : okm        ? (r[i] - rm[i]) / eps
+                                               : 0.0;
+        }
+    }
+    return 1;
 }
 
 int sq_smooth_feasible_cb(void *user, uint32_t con, const double *const *param)

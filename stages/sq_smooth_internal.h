@@ -45,8 +45,11 @@ double sq_smooth_energy(const sq_smooth_ctx *c, const double *pos);
 /* Callbacks for sq_nlls_solve: residual blocks 0..nq-1 are the quads;
  * blocks nq..nq+nv-1 (when damping > 0) are damping * (a, b) of vertex
  * r - nq (a damped, shorter step on a retry). Parameter block i is vertex
- * i's tangent offset (a, b): position base + h (a t1 + b t2). */
-int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, double *r);
+ * i's tangent offset (a, b): position base + h (a t1 + b t2). The residual
+ * callback (sq_nlls_residual_fn) gives the angle and length residuals'
+ * derivatives analytically, the barrier's and untangling's (nonzero only
+ * near a fold) by central differences. */
+int sq_smooth_residual_cb(void *user, uint32_t q, const double *const *param, double *r, double **jac);
 int sq_smooth_feasible_cb(void *user, uint32_t con, const double *const *param);
 
 #endif
