@@ -94,3 +94,23 @@ sq_status sq_cli_write_quads(const char *path, const sq_quad_mesh *Q, sq_error *
     free(off);
     return st;
 }
+
+sq_status sq_cli_probe_output(const char *path, sq_error *err)
+{
+    sq_atomic_file af;
+    sq_status st = sq_atomic_open(&af, path, err);
+    if (!st) sq_atomic_abort(&af);
+    return st;
+}
+
+int sq_cli_number_option(const char *cmd, const char *opt, const char *val, double *out)
+{
+    char *end = NULL;
+    double x = strtod(val, &end);
+    if (!end || *end || end == val || !isfinite(x)) {
+        fprintf(stderr, "seamquad %s: %s needs a number, got '%s'\n", cmd, opt, val);
+        return 0;
+    }
+    *out = x;
+    return 1;
+}

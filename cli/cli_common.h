@@ -61,4 +61,12 @@ sq_status sq_cli_write_quads(const char *path, const struct sq_quad_mesh *Q, sq_
 /* Exit code for a library status. */
 int sq_exit_code(sq_status st);
 
+/* An output that cannot be written, found before the work starts: a
+ * temporary file is created beside `path` and removed. Leaves nothing. */
+sq_status sq_cli_probe_output(const char *path, sq_error *err);
+
+/* The value `val` of option `opt` of command `cmd` as a finite number:
+ * 1, or 0 after saying on stderr what was wrong. */
+int sq_cli_number_option(const char *cmd, const char *opt, const char *val, double *out);
+
 #endif

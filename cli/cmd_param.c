@@ -249,16 +249,6 @@ static char *staging_path(const char *path, int k)
     return s;
 }
 
-/* Fails early (before the long computation) when a target cannot be
- * created: the directory is missing or not writable. Leaves nothing. */
-static sq_status probe_output(const char *path, sq_error *err)
-{
-    sq_atomic_file af;
-    sq_status st = sq_atomic_open(&af, path, err);
-    if (st) return st;
-    sq_atomic_abort(&af);
-    return SQ_OK;
-}
 
 static sq_status write_domain_svg(const sq_param *P, const char *path, sq_error *err)
 {
@@ -688,7 +678,7 @@ int sq_cmd_param(int argc, char **argv)
     sq_cones_histogram(mesh.nv, val, hist, MAX_VALENCE_HIST);
     stage = "output";
     for (int i = 0; i < NOUT; i++)
-        if (out[i].path && probe_output(out[i].path, &err)) goto fail;
+        if (out[i].path && sq_cli_probe_output(out[i].path, &err)) goto fail;
 
     /* the parametrization */
     stage = "param";

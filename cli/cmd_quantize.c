@@ -177,18 +177,6 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
     printf("\n}\n");
 }
 
-static int number_option(const char *cmd, const char *opt, const char *val, double *out)
-{
-    char *end = NULL;
-    double x = strtod(val, &end);
-    if (!end || *end || end == val || !isfinite(x)) {
-        fprintf(stderr, "seamquad %s: %s needs a number, got '%s'\n", cmd, opt, val);
-        return 0;
-    }
-    *out = x;
-    return 1;
-}
-
 int sq_cmd_quantize(int argc, char **argv)
 {
     report r;
@@ -217,10 +205,10 @@ int sq_cmd_quantize(int argc, char **argv)
             else if (!strcmp(a, "--map")) r.map_path = v;
             else if (!strcmp(a, "--svg")) r.svg_path = v;
             else if (!strcmp(a, "--quads")) {
-                if (!number_option("quantize", a, v, &r.quads)) return SQ_EXIT_USAGE;
+                if (!sq_cli_number_option("quantize", a, v, &r.quads)) return SQ_EXIT_USAGE;
                 have_quads = 1;
             } else if (!strcmp(a, "--edge-length")) {
-                if (!number_option("quantize", a, v, &r.edge_length)) return SQ_EXIT_USAGE;
+                if (!sq_cli_number_option("quantize", a, v, &r.edge_length)) return SQ_EXIT_USAGE;
                 have_len = 1;
             } else if (!strcmp(a, "--optimize")) {
                 if (!strcmp(v, "on")) r.optimize = 1;

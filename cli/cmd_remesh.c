@@ -108,27 +108,6 @@ static void progress(void *user, const char *stage, double fraction)
     fprintf(stderr, "[%3.0f%%] %-9s %7.1f s\n", 100 * fraction, stage, sq_now() - ps->t0);
 }
 
-static int number_option(const char *opt, const char *val, double *out)
-{
-    char *end = NULL;
-    double x = strtod(val, &end);
-    if (!end || *end || end == val || !isfinite(x)) {
-        fprintf(stderr, "seamquad remesh: %s needs a number, got '%s'\n", opt, val);
-        return 0;
-    }
-    *out = x;
-    return 1;
-}
-
-/* An output that cannot be written is found before the work starts: a
- * temporary file is created beside it and removed. */
-static sq_status probe_output(const char *path, sq_error *err)
-{
-    sq_atomic_file af;
-    sq_status st = sq_atomic_open(&af, path, err);
-    if (!st) sq_atomic_abort(&af);
-    return st;
-}
 
 /* The intermediates into dir; on failure none is left. */
 static sq_status write_keep(const char *dir, uint32_t nv, const sq_remesh_result *R, sq_error *err)
@@ -322,26 +301,26 @@ int sq_cmd_remesh(int argc, char **argv)
                 }
                 opt.no_smoothing = !strcmp(v, "off");
             } else if (!strcmp(a, "--level")) {
-                if (!number_option(a, v, &x) || x < 0 || x > 8 || x != floor(x)) {
+                if (!sq_cli_number_option("remesh", a, v, &x) || x < 0 || x > 8 || x != floor(x)) {
                     fprintf(stderr, "seamquad remesh: --level needs an integer from 0 to 8, got '%s'\n", v);
                     return SQ_EXIT_USAGE;
                 }
                 level = (int)x;
             }
             else if (!strcmp(a, "--quads")) {
-                if (!number_option(a, v, &opt.quads)) return SQ_EXIT_USAGE;
+                if (!sq_cli_number_option("remesh", a, v, &opt.quads)) return SQ_EXIT_USAGE;
                 have_quads = 1;
             } else if (!strcmp(a, "--edge-length")) {
-                if (!number_option(a, v, &opt.edge_length)) return SQ_EXIT_USAGE;
+                if (!sq_cli_number_option("remesh", a, v, &opt.edge_length)) return SQ_EXIT_USAGE;
                 have_len = 1;
             } else if (!strcmp(a, "--iterations")) {
-                if (!number_option(a, v, &x) || x < 1 || x > 100000 || x != floor(x)) {
+                if (!sq_cli_number_option("remesh", a, v, &x) || x < 1 || x > 100000 || x != floor(x)) {
                     fprintf(stderr, "seamquad remesh: --iterations needs a count from 1 to 100000, got '%s'\n", v);
                     return SQ_EXIT_USAGE;
                 }
                 opt.optimize_iterations = (uint32_t)x;
             } else if (!strcmp(a, "--seed")) {
-                if (!number_option(a, v, &x) || x < 1 || x > 1e15 || x != floor(x)) {
+                if (!sq_cli_number_option("remesh", a, v, &x) || x < 1 || x > 1e15 || x != floor(x)) {
                     fprintf(stderr, "seamquad remesh: --seed needs a positive integer, got '%s'\n", v);
                     return SQ_EXIT_USAGE;
                 }
@@ -422,7 +401,7 @@ int sq_cmd_remesh(int argc, char **argv)
     memset(&surf, 0, sizeof surf);
     sq_status st = SQ_OK;
     for (int k = 0; k < NOUTS && !st; k++)
-        if (outs[k]) st = probe_output(outs[k], &err);
+        if (outs[k]) st = sq_cli_probe_output(outs[k], &err);
     if (!st && keep_dir) {
         struct stat sb;
         if (stat(keep_dir, &sb) != 0 && mkdir(keep_dir, 0777) != 0)
@@ -432,7 +411,7 @@ int sq_cmd_remesh(int argc, char **argv)
         else {
             char probe[4096];
             snprintf(probe, sizeof probe, "%s/igm.obj", keep_dir);
-            st = probe_output(probe, &err);
+            st = sq_cli_probe_output(probe, &err);
         }
     }
     if (!st) {
