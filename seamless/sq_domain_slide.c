@@ -425,121 +425,104 @@ static int cmp_cand(const void *x, const void *y)
     return (a->offset > b->offset) - (a->offset < b->offset);
 }
 
-sq_status sq_domain_slide_build(sq_domain *D, const uint32_t *corner_v, const uint32_t *len,
-                                uint32_t fixed_offset, sq_slide_info *info, sq_error *err)
+/* state shared by the steps of sq_domain_slide_build */
+typedef struct slide_run {
+    sq_domain *D;
+    slide_ctx *c;
+    const sq_metapolygon *Q0;
+    const uint32_t *corner_v, *len;
+    sq_slide_info *info;
+    uint32_t *fmf0, *pos, *offs;
+    uint8_t *mark;
+    slide_seq *seqs;
+    candidate *cand;
+    piece_side *sd;
+    uint32_t nseq, ncand, noffs;
+    uint32_t noff_ok; /* offsets with a feasible point */
+    sq_pad_system *S;
+} slide_run;
+
+/* boundary positions from corner 0; the corners' positions and sides */
+static sq_status slide_positions(slide_run *sr, sq_error *err)
 {
-    const uint32_t k = D->k;
-    const sq_metapolygon *Q = &D->quads;
-    if (D->genus < 2 || k != 8 * D->genus - 4 || D->pattern.k != k || !Q->nf ||
-        Q->nf != D->nf_unpadded || !D->f_meta_face || !D->corner_vert || !D->side_len)
-        return sq_error_set(err, SQ_ERR_ARGUMENT,
-                            "slide: D must hold the unpadded subdivided metapolygon of genus "
-                            ">= 2 with its pattern");
-    if (fixed_offset != SQ_NONE && fixed_offset >= k)
-        return sq_error_set(err, SQ_ERR_ARGUMENT, "offset %u out of range (k = %u)",
-                            fixed_offset, k);
-    sq_slide_info local;
-    if (!info) info = &local;
-    memset(info, 0, sizeof *info);
-
-    sq_status st = SQ_OK;
-    sq_metapolygon Q0;
-    sq_metapolygon_init(&Q0);
-    slide_ctx c = {&Q0, k, Q->nbnd, NULL, NULL, NULL, NULL};
-    uint32_t *fmf0 = NULL, *pos = NULL, *offs = NULL;
-    uint8_t *mark = NULL;
-    slide_seq *seqs = NULL;
-    candidate *cand = NULL;
-    piece_side *sd = NULL;
-    uint32_t nseq = 0, ncand = 0, noffs = 0;
-    sq_pad_system S;
-    sq_pad_system_init(&S);
-
-    st = sq_metapolygon_copy(&Q0, Q, err);
-    if (st) goto done;
-    fmf0 = malloc(((size_t)Q0.nf + 1) * sizeof *fmf0);
-    c.bnd = malloc(((size_t)c.nbnd + 1) * sizeof *c.bnd);
-    c.corner_at = malloc(((size_t)c.nbnd + 1) * sizeof *c.corner_at);
-    c.side_at = malloc(((size_t)c.nbnd + 1) * sizeof *c.side_at);
-    c.cpos = malloc(((size_t)k + 1) * sizeof *c.cpos);
-    pos = malloc(((size_t)Q0.nv + 1) * sizeof *pos);
-    mark = calloc((size_t)Q0.nv + 1, 1);
-    seqs = malloc(((size_t)c.nbnd + 1) * sizeof *seqs);
-    offs = malloc(((size_t)k + 1) * sizeof *offs);
-    sd = malloc(((size_t)k + 4) * sizeof *sd);
-    if (!fmf0 || !c.bnd || !c.corner_at || !c.side_at || !c.cpos || !pos || !mark || !seqs ||
-        !offs || !sd) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    memcpy(fmf0, D->f_meta_face, (size_t)Q0.nf * sizeof *fmf0);
-    /* boundary positions from corner 0 */
-    for (uint32_t v = 0; v < Q0.nv; v++) pos[v] = SQ_NONE;
+    const sq_metapolygon *Q0 = sr->Q0;
+    slide_ctx *c = sr->c;
+    const uint32_t k = c->k, *corner_v = sr->corner_v, *len = sr->len;
+    uint32_t *pos = sr->pos;
+    for (uint32_t v = 0; v < Q0->nv; v++) pos[v] = SQ_NONE;
     {
-        uint32_t h = Q0.v_he[corner_v[0]];
-        for (uint32_t p = 0; p < c.nbnd; p++, h = Q0.he_next[h]) {
-            c.bnd[p] = Q0.he_vert[h];
-            pos[c.bnd[p]] = p;
-            c.corner_at[p] = SPLIT;
+        uint32_t h = Q0->v_he[corner_v[0]];
+        for (uint32_t p = 0; p < c->nbnd; p++, h = Q0->he_next[h]) {
+            c->bnd[p] = Q0->he_vert[h];
+            pos[c->bnd[p]] = p;
+            c->corner_at[p] = SPLIT;
         }
     }
     for (uint32_t j = 0, p = 0; j < k; j++) {
-        if (pos[corner_v[j]] != p || Q0.v_nface[corner_v[j]] != 1) {
-            st = sq_error_set(err, SQ_ERR_ARGUMENT,
-                              "slide: corner %u is not %u edges along the boundary", j, p);
-            goto done;
-        }
-        c.cpos[j] = p;
-        c.corner_at[p] = j;
-        for (uint32_t q = p; q < p + len[j] && q < c.nbnd; q++) c.side_at[q] = j;
+        if (pos[corner_v[j]] != p || Q0->v_nface[corner_v[j]] != 1)
+            return sq_error_set(err, SQ_ERR_ARGUMENT,
+                                "slide: corner %u is not %u edges along the boundary", j, p);
+        c->cpos[j] = p;
+        c->corner_at[p] = j;
+        for (uint32_t q = p; q < p + len[j] && q < c->nbnd; q++) c->side_at[q] = j;
         p += len[j];
-        if (j == k - 1 && p != c.nbnd) {
-            st = sq_error_set(err, SQ_ERR_ARGUMENT, "slide: sides cover %u of %u boundary edges",
-                              p, c.nbnd);
-            goto done;
-        }
+        if (j == k - 1 && p != c->nbnd)
+            return sq_error_set(err, SQ_ERR_ARGUMENT,
+                                "slide: sides cover %u of %u boundary edges", p, c->nbnd);
     }
-    c.cpos[k] = c.nbnd;
+    c->cpos[k] = c->nbnd;
+    return SQ_OK;
+}
 
-    /* seed 9.3: every straight sequence, found from its earlier end; keep
-     * those with c1 mod 4 != 0 (seed 6.4) */
-    for (uint32_t p = 0; p < c.nbnd; p++) {
-        if (c.corner_at[p] != SPLIT || Q0.v_nface[c.bnd[p]] != 2) continue;
-        uint32_t end, first, n = trace(&Q0, c.bnd[p], mark, NULL, &end, &first);
+/* seed 9.3: every straight sequence, found from its earlier end; keep
+ * those with c1 mod 4 != 0 (seed 6.4) */
+static void slide_sequences(slide_run *sr)
+{
+    const sq_metapolygon *Q0 = sr->Q0;
+    const slide_ctx *c = sr->c;
+    const uint32_t k = c->k, *pos = sr->pos;
+    sq_slide_info *info = sr->info;
+    uint32_t nseq = 0;
+    for (uint32_t p = 0; p < c->nbnd; p++) {
+        if (c->corner_at[p] != SPLIT || Q0->v_nface[c->bnd[p]] != 2) continue;
+        uint32_t end, first, n = trace(Q0, c->bnd[p], sr->mark, NULL, &end, &first);
         if (n == 0 || pos[end] == SQ_NONE || pos[end] <= p) continue;
         info->sequences++;
         uint32_t c1 = 2;
-        for (uint32_t j = 0; j < k; j++) c1 += c.cpos[j] > p && c.cpos[j] < pos[end];
+        for (uint32_t j = 0; j < k; j++) c1 += c->cpos[j] > p && c->cpos[j] < pos[end];
         if (c1 % 4 == 0) continue;
-        seqs[nseq++] = (slide_seq){p, pos[end], first, n, c1};
+        sr->seqs[nseq++] = (slide_seq){p, pos[end], first, n, c1};
     }
     info->valid = nseq;
+    sr->nseq = nseq;
+}
 
-    /* side correspondences, as sq_domain.c */
-    if (fixed_offset != SQ_NONE) offs[noffs++] = fixed_offset;
-    else {
-        const uint32_t stride = k <= MAX_OFFSETS ? 1 : (k + MAX_OFFSETS - 1) / MAX_OFFSETS;
-        for (uint32_t o = 0; o < k; o += stride) offs[noffs++] = o;
-    }
-
-    /* phase 1: the first feasible point of every (sequence, offset) */
+/* phase 1: the first feasible point of every (sequence, offset) */
+static sq_status slide_phase1(slide_run *sr, sq_error *err)
+{
+    sq_domain *D = sr->D;
+    const slide_ctx *c = sr->c;
+    const uint32_t k = c->k, noffs = sr->noffs, *offs = sr->offs;
+    sq_slide_info *info = sr->info;
+    piece_side *sd = sr->sd;
+    sq_pad_system *S = sr->S;
+    sq_status st = SQ_OK;
     size_t cap = 16;
-    cand = malloc(cap * sizeof *cand);
+    candidate *cand = sr->cand = malloc(cap * sizeof *cand);
     uint8_t *off_ok = calloc((size_t)k + 1, 1);
     if (!cand || !off_ok) {
         free(off_ok);
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
     }
-    for (uint32_t q = 0; q < nseq && !st; q++) {
-        const slide_seq *s = &seqs[q];
-        uint32_t nA = arc_sides(&c, s->ps, s->pe, s->len, sd);
-        uint32_t nB = arc_sides(&c, s->pe, s->ps + c.nbnd, s->len, sd + nA);
+    for (uint32_t q = 0; q < sr->nseq && !st; q++) {
+        const slide_seq *s = &sr->seqs[q];
+        uint32_t nA = arc_sides(c, s->ps, s->pe, s->len, sd);
+        uint32_t nB = arc_sides(c, s->pe, s->ps + c->nbnd, s->len, sd + nA);
         assert(nA == s->c1 && nA + nB == k + 4);
         for (uint32_t oi = 0; oi < noffs && !st; oi++) {
-            sq_pad_system_free(&S);
-            sq_pad_system_init(&S);
-            st = make_system(&c, sd, nA, nB, &D->pattern, offs[oi], &S, err);
+            sq_pad_system_free(S);
+            sq_pad_system_init(S);
+            st = make_system(c, sd, nA, nB, &D->pattern, offs[oi], S, err);
             if (st) break;
             int64_t *w = malloc(((size_t)nA + nB) * sizeof *w);
             if (!w) {
@@ -550,53 +533,64 @@ sq_status sq_domain_slide_build(sq_domain *D, const uint32_t *corner_v, const ui
             memset(&res, 0, sizeof res);
             res.w = w;
             sq_pad_options popt = {SQ_PAD_OPT_NO_DESCENT, 0};
-            if (sq_pad_solve(&S, &popt, &res, NULL) != SQ_OK || res.outcome != SQ_PAD_SOLVED ||
+            if (sq_pad_solve(S, &popt, &res, NULL) != SQ_OK || res.outcome != SQ_PAD_SOLVED ||
                 res.d != 1) {
                 free(w);
                 continue;
             }
-            if (ncand == cap) {
+            if (sr->ncand == cap) {
                 candidate *nc = realloc(cand, 2 * cap * sizeof *cand);
                 if (!nc) {
                     free(w);
                     st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                     break;
                 }
-                cand = nc, cap *= 2;
+                sr->cand = cand = nc, cap *= 2;
             }
-            cand[ncand++] = (candidate){q, offs[oi], res.added_quads, w};
+            cand[sr->ncand++] = (candidate){q, offs[oi], res.added_quads, w};
             off_ok[offs[oi]] = 1;
         }
     }
     uint32_t noff_ok = 0;
     for (uint32_t o = 0; o < k; o++) noff_ok += off_ok[o];
     free(off_ok);
-    if (st) goto done;
-    info->feasible = ncand;
-    if (ncand == 0) {
+    sr->noff_ok = noff_ok;
+    if (st) return st;
+    info->feasible = sr->ncand;
+    if (sr->ncand == 0) {
         const uint32_t rank = sq_pattern_rank(&D->pattern);
-        st = sq_error_set(err, SQ_ERR_ARGUMENT,
-                          "no slide equalizes the pattern (rank %u%s): %u straight sequences, "
-                          "%u of them with corner counts not divisible by 4, none has a "
-                          "nonnegative integral padding for any of %u side correspondences "
-                          "(seed 6.4)",
-                          rank,
-                          rank == 0 ? ": every pair glues by a translation, and one slide "
-                                      "adds only one direction (seamless-notes 7)"
-                                    : "",
-                          info->sequences, info->valid, noffs);
-        goto done;
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "no slide equalizes the pattern (rank %u%s): %u straight sequences, "
+                            "%u of them with corner counts not divisible by 4, none has a "
+                            "nonnegative integral padding for any of %u side correspondences "
+                            "(seed 6.4)",
+                            rank,
+                            rank == 0 ? ": every pair glues by a translation, and one slide "
+                                        "adds only one direction (seamless-notes 7)"
+                                      : "",
+                            info->sequences, info->valid, noffs);
     }
-    /* phase 2 (seed 9.3): descent on the most promising, then sort again */
+    return SQ_OK;
+}
+
+/* phase 2 (seed 9.3): descent on the most promising, then sort again */
+static sq_status slide_phase2(slide_run *sr, sq_error *err)
+{
+    const slide_ctx *c = sr->c;
+    candidate *cand = sr->cand;
+    const uint32_t ncand = sr->ncand;
+    piece_side *sd = sr->sd;
+    sq_pad_system *S = sr->S;
+    sq_status st = SQ_OK;
     qsort(cand, ncand, sizeof *cand, cmp_cand);
     const uint32_t top = ncand < DESCENT_CANDIDATES ? ncand : DESCENT_CANDIDATES;
     for (uint32_t t = 0; t < top && !st; t++) {
-        const slide_seq *s = &seqs[cand[t].seq];
-        uint32_t nA = arc_sides(&c, s->ps, s->pe, s->len, sd);
-        uint32_t nB = arc_sides(&c, s->pe, s->ps + c.nbnd, s->len, sd + nA);
-        sq_pad_system_free(&S);
-        sq_pad_system_init(&S);
-        st = make_system(&c, sd, nA, nB, &D->pattern, cand[t].offset, &S, err);
+        const slide_seq *s = &sr->seqs[cand[t].seq];
+        uint32_t nA = arc_sides(c, s->ps, s->pe, s->len, sd);
+        uint32_t nB = arc_sides(c, s->pe, s->ps + c->nbnd, s->len, sd + nA);
+        sq_pad_system_free(S);
+        sq_pad_system_init(S);
+        st = make_system(c, sd, nA, nB, &sr->D->pattern, cand[t].offset, S, err);
         if (st) break;
         int64_t *w = malloc(((size_t)nA + nB) * sizeof *w);
         if (!w) {
@@ -606,7 +600,7 @@ sq_status sq_domain_slide_build(sq_domain *D, const uint32_t *corner_v, const ui
         sq_pad_result res;
         memset(&res, 0, sizeof res);
         res.w = w;
-        if (sq_pad_solve(&S, NULL, &res, NULL) == SQ_OK && res.outcome == SQ_PAD_SOLVED &&
+        if (sq_pad_solve(S, NULL, &res, NULL) == SQ_OK && res.outcome == SQ_PAD_SOLVED &&
             res.d == 1 && res.added_quads < cand[t].added) {
             free(cand[t].w);
             cand[t].w = w;
@@ -615,22 +609,32 @@ sq_status sq_domain_slide_build(sq_domain *D, const uint32_t *corner_v, const ui
             free(w);
         }
     }
-    if (st) goto done;
+    if (st) return st;
     qsort(cand, top, sizeof *cand, cmp_cand);
+    return SQ_OK;
+}
 
-    /* build the cheapest whose glued mesh is simple; pass 1 adds one layer
-     * on every non-split side, which keeps every equality (each sub-side
-     * and each split side grows by 2 per pair of neighbours, docs) */
+/* build the cheapest whose glued mesh is simple; pass 1 adds one layer
+ * on every non-split side, which keeps every equality (each sub-side
+ * and each split side grows by 2 per pair of neighbours, docs) */
+static sq_status slide_build_cheapest(slide_run *sr, sq_error *err)
+{
+    sq_domain *D = sr->D;
+    const slide_ctx *c = sr->c;
+    const uint32_t k = c->k, ncand = sr->ncand;
+    candidate *cand = sr->cand;
+    piece_side *sd = sr->sd;
+    sq_status st = SQ_OK;
     int found = 0;
     for (uint32_t pass = 0; pass < 2 && !found && !st; pass++) {
         for (uint32_t t = 0; t < ncand && t < MAX_BUILDS && !found; t++) {
-            const slide_seq *s = &seqs[cand[t].seq];
-            uint32_t nA = arc_sides(&c, s->ps, s->pe, s->len, sd);
-            uint32_t nB = arc_sides(&c, s->pe, s->ps + c.nbnd, s->len, sd + nA);
+            const slide_seq *s = &sr->seqs[cand[t].seq];
+            uint32_t nA = arc_sides(c, s->ps, s->pe, s->len, sd);
+            uint32_t nB = arc_sides(c, s->pe, s->ps + c->nbnd, s->len, sd + nA);
             if (pass == 1)
                 for (uint32_t u = 0; u < nA + nB; u++) cand[t].w[u] += sd[u].orig != SPLIT;
-            st = build_candidate(D, &c, fmf0, s, sd, nA, nB, cand[t].offset, cand[t].w, info,
-                                 err);
+            st = build_candidate(D, c, sr->fmf0, s, sd, nA, nB, cand[t].offset, cand[t].w,
+                                 sr->info, err);
             if (st) break;
             if (pass == 0 && D->quads_added != cand[t].added) {
                 st = sq_error_set(err, SQ_ERR_INTERNAL,
@@ -654,13 +658,72 @@ sq_status sq_domain_slide_build(sq_domain *D, const uint32_t *corner_v, const ui
         st = sq_error_set(err, SQ_ERR_INTERNAL,
                           "none of the %u feasible slides glues into a simple quad mesh",
                           ncand);
-    if (!st) D->offsets_feasible = noff_ok;
+    if (!st) D->offsets_feasible = sr->noff_ok;
+    return st;
+}
+
+sq_status sq_domain_slide_build(sq_domain *D, const uint32_t *corner_v, const uint32_t *len,
+                                uint32_t fixed_offset, sq_slide_info *info, sq_error *err)
+{
+    const uint32_t k = D->k;
+    const sq_metapolygon *Q = &D->quads;
+    if (D->genus < 2 || k != 8 * D->genus - 4 || D->pattern.k != k || !Q->nf ||
+        Q->nf != D->nf_unpadded || !D->f_meta_face || !D->corner_vert || !D->side_len)
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "slide: D must hold the unpadded subdivided metapolygon of genus "
+                            ">= 2 with its pattern");
+    if (fixed_offset != SQ_NONE && fixed_offset >= k)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "offset %u out of range (k = %u)",
+                            fixed_offset, k);
+    sq_slide_info local;
+    if (!info) info = &local;
+    memset(info, 0, sizeof *info);
+
+    sq_status st = SQ_OK;
+    sq_metapolygon Q0;
+    sq_metapolygon_init(&Q0);
+    slide_ctx c = {&Q0, k, Q->nbnd, NULL, NULL, NULL, NULL};
+    sq_pad_system S;
+    sq_pad_system_init(&S);
+    slide_run sr = {.D = D, .c = &c, .Q0 = &Q0, .corner_v = corner_v, .len = len,
+                    .info = info, .S = &S};
+
+    st = sq_metapolygon_copy(&Q0, Q, err);
+    if (st) goto done;
+    sr.fmf0 = malloc(((size_t)Q0.nf + 1) * sizeof *sr.fmf0);
+    c.bnd = malloc(((size_t)c.nbnd + 1) * sizeof *c.bnd);
+    c.corner_at = malloc(((size_t)c.nbnd + 1) * sizeof *c.corner_at);
+    c.side_at = malloc(((size_t)c.nbnd + 1) * sizeof *c.side_at);
+    c.cpos = malloc(((size_t)k + 1) * sizeof *c.cpos);
+    sr.pos = malloc(((size_t)Q0.nv + 1) * sizeof *sr.pos);
+    sr.mark = calloc((size_t)Q0.nv + 1, 1);
+    sr.seqs = malloc(((size_t)c.nbnd + 1) * sizeof *sr.seqs);
+    sr.offs = malloc(((size_t)k + 1) * sizeof *sr.offs);
+    sr.sd = malloc(((size_t)k + 4) * sizeof *sr.sd);
+    if (!sr.fmf0 || !c.bnd || !c.corner_at || !c.side_at || !c.cpos || !sr.pos || !sr.mark ||
+        !sr.seqs || !sr.offs || !sr.sd) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    memcpy(sr.fmf0, D->f_meta_face, (size_t)Q0.nf * sizeof *sr.fmf0);
+    if ((st = slide_positions(&sr, err))) goto done;
+    slide_sequences(&sr);
+
+    /* side correspondences, as sq_domain.c */
+    if (fixed_offset != SQ_NONE) sr.offs[sr.noffs++] = fixed_offset;
+    else {
+        const uint32_t stride = k <= MAX_OFFSETS ? 1 : (k + MAX_OFFSETS - 1) / MAX_OFFSETS;
+        for (uint32_t o = 0; o < k; o += stride) sr.offs[sr.noffs++] = o;
+    }
+
+    (void)((st = slide_phase1(&sr, err)) || (st = slide_phase2(&sr, err)) ||
+           (st = slide_build_cheapest(&sr, err)));
 done:
-    for (uint32_t t = 0; t < ncand; t++) free(cand[t].w);
-    free(cand);
+    for (uint32_t t = 0; t < sr.ncand; t++) free(sr.cand[t].w);
+    free(sr.cand);
     sq_pad_system_free(&S);
     sq_metapolygon_free(&Q0);
-    free(fmf0), free(c.bnd), free(c.corner_at), free(c.side_at), free(c.cpos), free(pos);
-    free(mark), free(seqs), free(offs), free(sd);
+    free(sr.fmf0), free(c.bnd), free(c.corner_at), free(c.side_at), free(c.cpos), free(sr.pos);
+    free(sr.mark), free(sr.seqs), free(sr.offs), free(sr.sd);
     return st;
 }

@@ -611,6 +611,252 @@ static int z_to_i64(const mpz_t z, int64_t *out)
     return 1;
 }
 
+/* state shared by the steps of sq_pad_solve */
+typedef struct pad_solve {
+    const sq_pad_system *S;
+    sq_pad_result *res;
+    pad_ctx *c;
+    gmp_arrays *g;
+    unsigned flags;
+    uint32_t n, rank, max_steps;
+    uint32_t nmove;                    /* integral null-space moves in moves */
+    int64_t *w, *best, *moves, *dL;
+    int lp_integral;                   /* the LP vertex is a second start */
+} pad_solve;
+
+/* 1. over Q: rank, feasibility, the basic solution (seed 6.3's w) */
+static sq_status solve_rational(pad_solve *p, sq_error *err)
+{
+    gmp_arrays *g = p->g;
+    sq_pad_result *res = p->res;
+    const uint32_t n = p->n;
+    int consistent = 0;
+    uint32_t rank = 0;
+    sq_status st = sq_padding_rational(g->m, n, g->M, g->r, &rank, &consistent, g->cert,
+                                       g->basic, g->kernel, err);
+    if (st != SQ_OK)
+        return st;
+    res->rank = rank;
+    p->rank = rank;
+    if (!consistent) {
+        res->outcome = SQ_PAD_INFEASIBLE_INVARIANT;
+        return invariant_message(p->c, g, rank, err);
+    }
+    mpz_set_ui(g->den, 1);
+    for (uint32_t s = 0; s < n; ++s)
+        mpz_lcm(g->den, g->den, mpq_denref(g->basic[s]));
+    if (!mpz_fits_ulong_p(g->den))
+        return sq_error_set(err, SQ_ERR_INTERNAL, "padding: denominator exceeds 64 bits");
+    res->rational_den = mpz_get_ui(g->den);
+    return SQ_OK;
+}
+
+/* 2. over Z: an integral solution, or the least refinement d */
+static sq_status solve_integral(pad_solve *p, sq_error *err)
+{
+    gmp_arrays *g = p->g;
+    const uint32_t n = p->n;
+    sq_status st;
+    uint32_t rank2 = 0;
+    if (p->flags & SQ_PAD_OPT_NO_INTEGRAL_SEARCH) {
+        /* the seed's rule: d = lcm of the basic solution's denominators */
+        for (uint32_t s = 0; s < n; ++s) {
+            mpz_divexact(g->tmp, g->den, mpq_denref(g->basic[s]));
+            mpz_mul(g->w0[s], g->tmp, mpq_numref(g->basic[s]));
+        }
+        st = sq_padding_lattice(g->m, n, g->M, g->r, g->tmp, g->ones, &rank2, g->lattice, err);
+        /* (g.tmp, g.ones reused as scratch; only the lattice is kept) */
+    } else {
+        st = sq_padding_lattice(g->m, n, g->M, g->r, g->den, g->w0, &rank2, g->lattice, err);
+    }
+    if (st != SQ_OK)
+        return st;
+    assert(rank2 == p->rank);
+    if (!mpz_fits_ulong_p(g->den))
+        return sq_error_set(err, SQ_ERR_INTERNAL, "padding: refinement exceeds 64 bits");
+    p->res->d = mpz_get_ui(g->den);
+    for (uint32_t i = 0; i < g->m; ++i)
+        mpz_mul(g->rd[i], g->r[i], g->den);
+    return SQ_OK;
+}
+
+/* integral null-space moves (independent of d): the rows of the rational
+ * kernel and of the lattice that fit in 32 bits */
+static void null_space_moves(pad_solve *p)
+{
+    const gmp_arrays *g = p->g;
+    const uint32_t n = p->n;
+    int64_t *moves = p->moves;
+    uint32_t nmove = 0;
+    const uint32_t kdim = n - p->rank;
+    for (uint32_t src = 0; src < 2; ++src) {
+        const mpz_t *K = src == 0 ? (const mpz_t *)g->kernel : (const mpz_t *)g->lattice;
+        for (uint32_t j = 0; j < kdim; ++j) {
+            int64_t *v = moves + (size_t)nmove * n;
+            int ok = 1;
+            for (uint32_t s = 0; s < n && ok; ++s)
+                ok = z_to_i64(K[(size_t)j * n + s], &v[s]) && v[s] < ((int64_t)1 << 31) &&
+                     v[s] > -((int64_t)1 << 31);
+            if (ok)
+                ++nmove;
+        }
+    }
+    p->nmove = nmove;
+}
+
+/* 3. nonnegativity, first part: whether the all-ones vector (over the sides
+ * not forced to zero) is in the kernel; if so, shifts w0 to w0 >= 0 and adds
+ * the ones as a move. Returns whether it is. */
+static int shift_start(pad_solve *p)
+{
+    const sq_pad_system *S = p->S;
+    gmp_arrays *g = p->g;
+    const uint32_t n = p->n;
+    int ones_in_kernel = 1;
+    for (uint32_t s = 0; s < n; ++s)
+        mpz_set_ui(g->ones[s], (S->flags[s] & SQ_PAD_ZERO) ? 0 : 1);
+    for (uint32_t i = 0; i < g->m && ones_in_kernel; ++i) {
+        mpz_set_ui(g->tmp, 0);
+        for (uint32_t s = 0; s < n; ++s)
+            if (mpz_sgn(g->ones[s]))
+                mpz_add(g->tmp, g->tmp, g->M[(size_t)i * n + s]);
+        ones_in_kernel = mpz_sgn(g->tmp) == 0;
+    }
+    if (ones_in_kernel) {
+        /* seamless-notes 3: w + c 1 solves the system for every c */
+        mpz_set_ui(g->tmp, 0);
+        for (uint32_t s = 0; s < n; ++s)
+            if (mpz_sgn(g->ones[s]) && mpz_cmp(g->w0[s], g->tmp) < 0)
+                mpz_set(g->tmp, g->w0[s]);
+        for (uint32_t s = 0; s < n; ++s)
+            if (mpz_sgn(g->ones[s]))
+                mpz_sub(g->w0[s], g->w0[s], g->tmp);
+        p->res->used_shift = 1;
+        int64_t *v = p->moves + (size_t)p->nmove * n;
+        for (uint32_t s = 0; s < n; ++s)
+            v[s] = mpz_get_si(g->ones[s]);
+        ++p->nmove;
+    }
+    return ones_in_kernel;
+}
+
+/* 3. nonnegativity, second part: the exact LP's vertex; a start from it
+ * (repairing the lattice solution or refining d) unless one exists, and
+ * p->lp_integral if the vertex remains a second start */
+static sq_status lp_start(pad_solve *p, int ones_in_kernel, int *have_start, sq_error *err)
+{
+    const sq_pad_system *S = p->S;
+    gmp_arrays *g = p->g;
+    sq_pad_result *res = p->res;
+    const uint32_t n = p->n;
+    int64_t *w = p->w;
+    for (uint32_t s = 0; s < n; ++s) {
+        mpz_set_si(g->cost[s], (long)S->length[s]);
+        mpz_mul(g->cost[s], g->cost[s], g->den);
+        mpz_add_ui(g->cost[s], g->cost[s], 1);
+    }
+    int feasible = 0;
+    sq_status st = sq_padding_lp(g->m, n, g->M, g->rd, g->cost, &feasible, g->vertex, err);
+    if (st != SQ_OK)
+        return st;
+    (void)ones_in_kernel; /* only in the assertion below */
+    if (!feasible) {
+        assert(!ones_in_kernel);
+        res->outcome = SQ_PAD_INFEASIBLE_NONNEGATIVE;
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "padding cannot equalize the sides: the equations have rational "
+                            "solutions (rank %u of %u) but none with every padding w >= 0 "
+                            "(exact LP; forced-zero or split sides bind)",
+                            p->rank, g->m);
+    }
+    mpz_set_ui(g->tmp, 1);
+    for (uint32_t s = 0; s < n; ++s)
+        mpz_lcm(g->tmp, g->tmp, mpq_denref(g->vertex[s]));
+    int lp_integral = mpz_cmp_ui(g->tmp, 1) == 0;
+    if (!*have_start && !lp_integral) {
+        /* an integral point may exist although the vertex is
+         * fractional: try to repair the lattice solution first */
+        int fits = 1;
+        for (uint32_t s = 0; s < n && fits; ++s)
+            fits = z_to_i64(g->w0[s], &w[s]);
+        if (fits && n <= 128 && repair(n, w, p->moves, p->nmove, p->best, 1000)) {
+            for (uint32_t s = 0; s < n; ++s)
+                mpz_set_si(g->w0[s], (long)w[s]);
+            *have_start = 1;
+        }
+    }
+    if (!*have_start) {
+        if (!lp_integral) {
+            /* refine further: D v is integral and solves the system
+             * for lengths scaled by d D (seed 6.3's argument) */
+            mpz_mul(g->den, g->den, g->tmp);
+            if (!mpz_fits_ulong_p(g->den))
+                return sq_error_set(err, SQ_ERR_INTERNAL, "padding: refinement overflow");
+            res->d = mpz_get_ui(g->den);
+        }
+        for (uint32_t s = 0; s < n; ++s) {
+            mpz_divexact(g->w0[s], g->tmp, mpq_denref(g->vertex[s]));
+            mpz_mul(g->w0[s], g->w0[s], mpq_numref(g->vertex[s]));
+        }
+        res->used_lp = 1;
+        *have_start = 1;
+        lp_integral = 0; /* already used as the start */
+    }
+    p->lp_integral = lp_integral;
+    return SQ_OK;
+}
+
+/* the start w0 as 64-bit w, and the refined lengths d L */
+static sq_status start_to_int64(pad_solve *p, sq_error *err)
+{
+    const sq_pad_system *S = p->S;
+    for (uint32_t s = 0; s < p->n; ++s) {
+        if (!z_to_i64(p->g->w0[s], &p->w[s]))
+            return sq_error_set(err, SQ_ERR_INTERNAL, "padding: w_%u exceeds 64 bits", s);
+        assert(p->w[s] >= 0);
+        if (__builtin_mul_overflow(S->length[s], (int64_t)p->res->d, &p->dL[s]))
+            return sq_error_set(err, SQ_ERR_INTERNAL, "padding: refined length overflows");
+    }
+    return SQ_OK;
+}
+
+/* 4. descent over integral null-space moves, from w and (if it is a second
+ * start) from the LP vertex; w becomes the better */
+static sq_status descend_starts(pad_solve *p, sq_error *err)
+{
+    const sq_pad_system *S = p->S;
+    const gmp_arrays *g = p->g;
+    sq_pad_result *res = p->res;
+    const uint32_t n = p->n;
+    int64_t *w = p->w, *best = p->best;
+    if (!(p->flags & SQ_PAD_OPT_NO_DESCENT))
+        res->descent_steps = descend(p->c, p->dL, w, p->moves, p->nmove, p->max_steps);
+    sq_status st = sq_pad_added_quads(S, res->d, w, &res->added_quads, err);
+    if (st != SQ_OK)
+        return st;
+    if (p->lp_integral) {
+        /* second start: the LP vertex (same d), descended; keep the better */
+        for (uint32_t s = 0; s < n; ++s) {
+            if (!z_to_i64(mpq_numref(g->vertex[s]), &best[s]))
+                return sq_error_set(err, SQ_ERR_INTERNAL, "padding: LP vertex exceeds 64 bits");
+        }
+        uint32_t steps = 0;
+        if (!(p->flags & SQ_PAD_OPT_NO_DESCENT))
+            steps = descend(p->c, p->dL, best, p->moves, p->nmove, p->max_steps);
+        uint64_t q2 = 0;
+        st = sq_pad_added_quads(S, res->d, best, &q2, err);
+        if (st != SQ_OK)
+            return st;
+        if (q2 < res->added_quads) {
+            memcpy(w, best, (size_t)n * sizeof *w);
+            res->added_quads = q2;
+            res->descent_steps = steps;
+            res->used_lp = 1;
+        }
+    }
+    return SQ_OK;
+}
+
 sq_status sq_pad_solve(const sq_pad_system *S, const sq_pad_options *opt, sq_pad_result *res,
                        sq_error *err)
 {
@@ -666,197 +912,30 @@ sq_status sq_pad_solve(const sq_pad_system *S, const sq_pad_options *opt, sq_pad
     build_rows(&c, &g);
     res->equations = g.m;
 
-    /* 1. over Q: rank, feasibility, the basic solution (seed 6.3's w) */
-    int consistent = 0;
-    uint32_t rank = 0;
-    st = sq_padding_rational(g.m, n, g.M, g.r, &rank, &consistent, g.cert, g.basic, g.kernel,
-                             err);
-    if (st != SQ_OK)
+    pad_solve p = {.S = S, .res = res, .c = &c, .g = &g, .flags = flags, .n = n,
+                   .max_steps = max_steps, .w = w, .best = best, .moves = moves, .dL = dL};
+    if ((st = solve_rational(&p, err)) != SQ_OK || (st = solve_integral(&p, err)) != SQ_OK)
         goto done;
-    res->rank = rank;
-    if (!consistent) {
-        res->outcome = SQ_PAD_INFEASIBLE_INVARIANT;
-        st = invariant_message(&c, &g, rank, err);
-        goto done;
-    }
-    mpz_set_ui(g.den, 1);
-    for (uint32_t s = 0; s < n; ++s)
-        mpz_lcm(g.den, g.den, mpq_denref(g.basic[s]));
-    if (!mpz_fits_ulong_p(g.den)) {
-        st = sq_error_set(err, SQ_ERR_INTERNAL, "padding: denominator exceeds 64 bits");
-        goto done;
-    }
-    res->rational_den = mpz_get_ui(g.den);
-
-    /* 2. over Z: an integral solution, or the least refinement d */
-    uint32_t rank2 = 0;
-    if (flags & SQ_PAD_OPT_NO_INTEGRAL_SEARCH) {
-        /* the seed's rule: d = lcm of the basic solution's denominators */
-        for (uint32_t s = 0; s < n; ++s) {
-            mpz_divexact(g.tmp, g.den, mpq_denref(g.basic[s]));
-            mpz_mul(g.w0[s], g.tmp, mpq_numref(g.basic[s]));
-        }
-        st = sq_padding_lattice(g.m, n, g.M, g.r, g.tmp, g.ones, &rank2, g.lattice, err);
-        /* (g.tmp, g.ones reused as scratch; only the lattice is kept) */
-    } else {
-        st = sq_padding_lattice(g.m, n, g.M, g.r, g.den, g.w0, &rank2, g.lattice, err);
-    }
-    if (st != SQ_OK)
-        goto done;
-    assert(rank2 == rank);
-    if (!mpz_fits_ulong_p(g.den)) {
-        st = sq_error_set(err, SQ_ERR_INTERNAL, "padding: refinement exceeds 64 bits");
-        goto done;
-    }
-    res->d = mpz_get_ui(g.den);
-    for (uint32_t i = 0; i < g.m; ++i)
-        mpz_mul(g.rd[i], g.r[i], g.den);
-
-    /* integral null-space moves (independent of d) */
-    uint32_t nmove = 0;
-    const uint32_t kdim = n - rank;
-    for (uint32_t src = 0; src < 2; ++src) {
-        const mpz_t *K = src == 0 ? (const mpz_t *)g.kernel : (const mpz_t *)g.lattice;
-        for (uint32_t j = 0; j < kdim; ++j) {
-            int64_t *v = moves + (size_t)nmove * n;
-            int ok = 1;
-            for (uint32_t s = 0; s < n && ok; ++s)
-                ok = z_to_i64(K[(size_t)j * n + s], &v[s]) && v[s] < ((int64_t)1 << 31) &&
-                     v[s] > -((int64_t)1 << 31);
-            if (ok)
-                ++nmove;
-        }
-    }
+    null_space_moves(&p);
 
     /* 3. nonnegativity */
-    int ones_in_kernel = 1;
-    for (uint32_t s = 0; s < n; ++s)
-        mpz_set_ui(g.ones[s], (S->flags[s] & SQ_PAD_ZERO) ? 0 : 1);
-    for (uint32_t i = 0; i < g.m && ones_in_kernel; ++i) {
-        mpz_set_ui(g.tmp, 0);
-        for (uint32_t s = 0; s < n; ++s)
-            if (mpz_sgn(g.ones[s]))
-                mpz_add(g.tmp, g.tmp, g.M[(size_t)i * n + s]);
-        ones_in_kernel = mpz_sgn(g.tmp) == 0;
-    }
-    int have_start = 0;
-    if (ones_in_kernel) {
-        /* seamless-notes 3: w + c 1 solves the system for every c */
-        mpz_set_ui(g.tmp, 0);
-        for (uint32_t s = 0; s < n; ++s)
-            if (mpz_sgn(g.ones[s]) && mpz_cmp(g.w0[s], g.tmp) < 0)
-                mpz_set(g.tmp, g.w0[s]);
-        for (uint32_t s = 0; s < n; ++s)
-            if (mpz_sgn(g.ones[s]))
-                mpz_sub(g.w0[s], g.w0[s], g.tmp);
-        res->used_shift = 1;
-        have_start = 1;
-        int64_t *v = moves + (size_t)nmove * n;
-        for (uint32_t s = 0; s < n; ++s)
-            v[s] = mpz_get_si(g.ones[s]);
-        ++nmove;
-    }
-    int lp_integral = 0;
+    const int ones_in_kernel = shift_start(&p);
+    int have_start = ones_in_kernel;
     if (!ones_in_kernel || !(flags & SQ_PAD_OPT_NO_LP_START)) {
-        for (uint32_t s = 0; s < n; ++s) {
-            mpz_set_si(g.cost[s], (long)S->length[s]);
-            mpz_mul(g.cost[s], g.cost[s], g.den);
-            mpz_add_ui(g.cost[s], g.cost[s], 1);
-        }
-        int feasible = 0;
-        st = sq_padding_lp(g.m, n, g.M, g.rd, g.cost, &feasible, g.vertex, err);
+        st = lp_start(&p, ones_in_kernel, &have_start, err);
         if (st != SQ_OK)
             goto done;
-        if (!feasible) {
-            assert(!ones_in_kernel);
-            res->outcome = SQ_PAD_INFEASIBLE_NONNEGATIVE;
-            st = sq_error_set(err, SQ_ERR_ARGUMENT,
-                              "padding cannot equalize the sides: the equations have rational "
-                              "solutions (rank %u of %u) but none with every padding w >= 0 "
-                              "(exact LP; forced-zero or split sides bind)",
-                              rank, g.m);
-            goto done;
-        }
-        mpz_set_ui(g.tmp, 1);
-        for (uint32_t s = 0; s < n; ++s)
-            mpz_lcm(g.tmp, g.tmp, mpq_denref(g.vertex[s]));
-        lp_integral = mpz_cmp_ui(g.tmp, 1) == 0;
-        if (!have_start && !lp_integral) {
-            /* an integral point may exist although the vertex is
-             * fractional: try to repair the lattice solution first */
-            int fits = 1;
-            for (uint32_t s = 0; s < n && fits; ++s)
-                fits = z_to_i64(g.w0[s], &w[s]);
-            if (fits && n <= 128 && repair(n, w, moves, nmove, best, 1000)) {
-                for (uint32_t s = 0; s < n; ++s)
-                    mpz_set_si(g.w0[s], (long)w[s]);
-                have_start = 1;
-            }
-        }
-        if (!have_start) {
-            if (!lp_integral) {
-                /* refine further: D v is integral and solves the system
-                 * for lengths scaled by d D (seed 6.3's argument) */
-                mpz_mul(g.den, g.den, g.tmp);
-                if (!mpz_fits_ulong_p(g.den)) {
-                    st = sq_error_set(err, SQ_ERR_INTERNAL, "padding: refinement overflow");
-                    goto done;
-                }
-                res->d = mpz_get_ui(g.den);
-            }
-            for (uint32_t s = 0; s < n; ++s) {
-                mpz_divexact(g.w0[s], g.tmp, mpq_denref(g.vertex[s]));
-                mpz_mul(g.w0[s], g.w0[s], mpq_numref(g.vertex[s]));
-            }
-            res->used_lp = 1;
-            have_start = 1;
-            lp_integral = 0; /* already used as the start */
-        }
     }
     assert(have_start);
-    for (uint32_t s = 0; s < n; ++s) {
-        if (!z_to_i64(g.w0[s], &w[s])) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "padding: w_%u exceeds 64 bits", s);
-            goto done;
-        }
-        assert(w[s] >= 0);
-        if (__builtin_mul_overflow(S->length[s], (int64_t)res->d, &dL[s])) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "padding: refined length overflows");
-            goto done;
-        }
-    }
+    if ((st = start_to_int64(&p, err)) != SQ_OK)
+        goto done;
     st = sq_pad_added_quads(S, res->d, w, &res->start_quads, err);
     if (st != SQ_OK)
         goto done;
 
     /* 4. descent over integral null-space moves */
-    if (!(flags & SQ_PAD_OPT_NO_DESCENT))
-        res->descent_steps = descend(&c, dL, w, moves, nmove, max_steps);
-    st = sq_pad_added_quads(S, res->d, w, &res->added_quads, err);
-    if (st != SQ_OK)
+    if ((st = descend_starts(&p, err)) != SQ_OK)
         goto done;
-    if (lp_integral) {
-        /* second start: the LP vertex (same d), descended; keep the better */
-        for (uint32_t s = 0; s < n; ++s) {
-            if (!z_to_i64(mpq_numref(g.vertex[s]), &best[s])) {
-                st = sq_error_set(err, SQ_ERR_INTERNAL, "padding: LP vertex exceeds 64 bits");
-                goto done;
-            }
-        }
-        uint32_t steps = 0;
-        if (!(flags & SQ_PAD_OPT_NO_DESCENT))
-            steps = descend(&c, dL, best, moves, nmove, max_steps);
-        uint64_t q2 = 0;
-        st = sq_pad_added_quads(S, res->d, best, &q2, err);
-        if (st != SQ_OK)
-            goto done;
-        if (q2 < res->added_quads) {
-            memcpy(w, best, (size_t)n * sizeof *w);
-            res->added_quads = q2;
-            res->descent_steps = steps;
-            res->used_lp = 1;
-        }
-    }
     for (uint32_t s = 0; s < n; ++s)
         assert(w[s] >= 0 && (!(S->flags[s] & SQ_PAD_ZERO) || w[s] == 0));
     if (res->w)

@@ -314,6 +314,196 @@ static double corner_angle(const double *a, const double *b, const double *c)
     return atan2(ux * vy - uy * vx, ux * vx + uy * vy);
 }
 
+/* every UV point belongs to one vertex (owner: nuv scratch) */
+static sq_status check_uv_owners(const sq_param *P, const sq_mesh *m, uint32_t *owner, const char *who,
+                                 sq_error *err)
+{
+    for (uint32_t t = 0; t < P->nuv; t++) owner[t] = SQ_NONE;
+    for (uint32_t c = 0; c < m->nh; c++) {
+        uint32_t t = P->tri_uv[c], v = P->tri[c];
+        if (owner[t] == SQ_NONE) owner[t] = v;
+        else if (owner[t] != v)
+            return sq_error_set(err, SQ_ERR_INTERNAL,
+                                "%s: UV point %" PRIu32 " is used by vertex %" PRIu32
+                                " and by vertex %" PRIu32 " (face %" PRIu32 "); a UV point belongs to one vertex",
+                                who, t, owner[t], v, c / 3);
+    }
+    return SQ_OK;
+}
+
+/* (a) orientation, exactly */
+static sq_status check_orientation(const sq_param *P, const char *who, sq_error *err)
+{
+    uint32_t nflip = 0, nzero = 0, first = SQ_NONE;
+    int first_sign = 0;
+    for (uint32_t f = 0; f < P->nf; f++) {
+        const uint32_t *t = P->tri_uv + 3 * (size_t)f;
+        int s = sq_orient2d(UV(P, t[0]), UV(P, t[1]), UV(P, t[2]));
+        if (s > 0) continue;
+        if (s < 0) nflip++;
+        else nzero++;
+        if (first == SQ_NONE) first = f, first_sign = s;
+    }
+    if (first != SQ_NONE) {
+        const uint32_t *v = P->tri + 3 * (size_t)first;
+        return sq_error_set(err, SQ_ERR_INTERNAL,
+                            "%s: face %" PRIu32 " (vertices %" PRIu32 ", %" PRIu32 ", %" PRIu32
+                            ") is %s in UV (exact orientation test); %" PRIu32
+                            " flipped and %" PRIu32 " zero-area UV triangles in all",
+                            who, first, v[0], v[1], v[2],
+                            first_sign < 0 ? "flipped (clockwise)" : "degenerate (zero area)", nflip,
+                            nzero);
+    }
+    return SQ_OK;
+}
+
+/* he_seam agrees with the UV indices */
+static sq_status check_he_seam(const sq_param *P, const sq_mesh *m, const char *who, sq_error *err)
+{
+    if (P->he_seam)
+        for (uint32_t h = 0; h < m->nh; h++)
+            if (!P->he_seam[h] != !is_seam(m, P, h))
+                return sq_error_set(err, SQ_ERR_INTERNAL,
+                                    "%s: he_seam of face %" PRIu32 ", corner %" PRIu32
+                                    " says %s, but edge (%" PRIu32 ", %" PRIu32 ") %s",
+                                    who, h / 3, h % 3, P->he_seam[h] ? "seam" : "no seam", m->he_vert[h],
+                                    he_dst(m, h),
+                                    P->he_seam[h] ? "has the same UV points on both sides"
+                                                  : "has different UV points on its two sides");
+    return SQ_OK;
+}
+
+/* (b) every seam edge: rotation by k x 90 degrees plus a translation,
+ * exactly; integer translations with SQ_PARAM_VERIFY_INTEGER */
+static sq_status check_seam_edges(const sq_param *P, const sq_mesh *m, int integer, const char *who,
+                                  sq_error *err)
+{
+    uint32_t nbad = 0, nnonint = 0, bad = SQ_NONE, nonint = SQ_NONE;
+    for (uint32_t h = 0; h < m->nh; h++) {
+        if (h > m->he_twin[h] || !is_seam(m, P, h)) continue;
+        transition T = edge_transition(m, P, h);
+        if (T.r < 0) {
+            if (!nbad++) bad = h;
+            continue;
+        }
+        if (integer) {
+            double Rp[2];
+            rot(T.r, T.px, Rp);
+            if (!sum_integral(T.qx[0], -Rp[0]) || !sum_integral(T.qx[1], -Rp[1]))
+                if (!nnonint++) nonint = h;
+        }
+    }
+    if (nbad) {
+        transition T = edge_transition(m, P, bad);
+        int r = 0;
+        double res = best_residual(&T, &r);
+        return sq_error_set(err, SQ_ERR_INTERNAL,
+                            "%s: seam edge (%" PRIu32 ", %" PRIu32 ") between faces %" PRIu32
+                            " and %" PRIu32
+                            ": its two UV copies are not related exactly by a rotation by a "
+                            "multiple of 90 degrees plus a translation (closest: rotation by %d "
+                            "degrees, off by %.3g); %" PRIu32 " such seam edges in all",
+                            who, m->he_vert[bad], he_dst(m, bad), bad / 3, m->he_twin[bad] / 3,
+                            90 * r, res, nbad);
+    }
+    if (nnonint) {
+        transition T = edge_transition(m, P, nonint);
+        double Rp[2];
+        rot(T.r, T.px, Rp);
+        return sq_error_set(err, SQ_ERR_INTERNAL,
+                            "%s: seam edge (%" PRIu32 ", %" PRIu32 ") between faces %" PRIu32
+                            " and %" PRIu32 ": translation (%.17g, %.17g) of its transition "
+                            "(rotation by %d degrees) is not integer; %" PRIu32
+                            " such seam edges in all (an integer grid map needs integer "
+                            "translations)",
+                            who, m->he_vert[nonint], he_dst(m, nonint), nonint / 3,
+                            m->he_twin[nonint] / 3, T.qx[0] - Rp[0], T.qx[1] - Rp[1], 90 * T.r,
+                            nnonint);
+    }
+    return SQ_OK;
+}
+
+/* (b') one transition per seam curve (C from find_curves) */
+static sq_status check_curve_transitions(const sq_param *P, const sq_mesh *m, const seam_curves *C,
+                                         const char *who, sq_error *err)
+{
+    for (uint32_t i = 0; i < C->n; i++) {
+        uint32_t h0 = C->first[i];
+        transition T0 = edge_transition(m, P, h0);
+        uint32_t h = h0, len = 0;
+        for (;;) {
+            len++;
+            if (h != h0) {
+                transition T = edge_transition(m, P, h);
+                if (T.r != T0.r || !same_translation(T0.r, T0.px, T0.qx, T.px, T.qx))
+                    return sq_error_set(err, SQ_ERR_INTERNAL,
+                                        "%s: seam curve %" PRIu32 " from vertex %" PRIu32
+                                        " has two transitions: edge (%" PRIu32 ", %" PRIu32
+                                        ") (edge %" PRIu32 " along the curve) has rotation %d "
+                                        "degrees%s, its first edge (%" PRIu32 ", %" PRIu32
+                                        ") rotation %d degrees; a seam curve has one transition",
+                                        who, i, m->he_vert[h0], m->he_vert[h], he_dst(m, h), len - 1,
+                                        90 * T.r, T.r == T0.r ? " and another translation" : "",
+                                        m->he_vert[h0], he_dst(m, h0), 90 * T0.r);
+            }
+            uint32_t y = he_dst(m, h);
+            if (is_node(C, P, y)) break;
+            uint32_t g = next_seam_out(m, C, h);
+            if (g == SQ_NONE || g == h0 || C->curve[g] != i || !C->dir[g]) break;
+            h = g;
+        }
+    }
+    return SQ_OK;
+}
+
+/* integer grid map: cones at integer points */
+static sq_status check_integer_cones(const sq_param *P, const sq_mesh *m, const char *who, sq_error *err)
+{
+    for (uint32_t c = 0; c < m->nh; c++) {
+        uint32_t v = P->tri[c];
+        if (!is_cone(P, v)) continue;
+        const double *p = UV(P, P->tri_uv[c]);
+        if (floor(p[0]) != p[0] || floor(p[1]) != p[1])
+            return sq_error_set(err, SQ_ERR_INTERNAL,
+                                "%s: cone vertex %" PRIu32 " (valence %" PRId32
+                                ") has UV point %" PRIu32 " = (%.17g, %.17g), not an integer "
+                                "point (face %" PRIu32 "); an integer grid map puts cones on "
+                                "the grid",
+                                who, v, P->valence[v], P->tri_uv[c], p[0], p[1], c / 3);
+    }
+    return SQ_OK;
+}
+
+/* (c) angle sums (angle: nv zeroed scratch) */
+static sq_status check_angle_sums(const sq_param *P, double *angle, const char *who, sq_error *err)
+{
+    for (uint32_t f = 0; f < P->nf; f++) {
+        const uint32_t *t = P->tri_uv + 3 * (size_t)f;
+        for (int k = 0; k < 3; k++)
+            angle[P->tri[3 * (size_t)f + k]] +=
+                corner_angle(UV(P, t[k]), UV(P, t[(k + 1) % 3]), UV(P, t[(k + 2) % 3]));
+    }
+    uint32_t nbad = 0, bad = SQ_NONE;
+    for (uint32_t v = 0; v < P->nv; v++) {
+        int32_t k = P->valence && v < P->nv_input ? P->valence[v] : 4;
+        double want = k * HALF_PI;
+        if (!(fabs(angle[v] - want) <= ANGLE_RTOL * want))
+            if (!nbad++) bad = v;
+    }
+    if (nbad) {
+        int32_t k = P->valence && bad < P->nv_input ? P->valence[bad] : 4;
+        return sq_error_set(err, SQ_ERR_INTERNAL,
+                            "%s: vertex %" PRIu32 " (%s) has UV angle sum %.17g = %.6f x pi/2, "
+                            "expected %" PRId32 " x pi/2 (%s); %" PRIu32
+                            " vertices with a wrong angle sum in all",
+                            who, bad, bad < P->nv_input ? "input vertex" : "added vertex",
+                            angle[bad], angle[bad] / HALF_PI, k,
+                            bad < P->nv_input ? (k == 4 ? "regular" : "its cone") : "added vertices are regular",
+                            nbad);
+    }
+    return SQ_OK;
+}
+
 sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err)
 {
     static const char *who = "parametrization check";
@@ -333,195 +523,27 @@ sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err)
     memset(&C, 0, sizeof C);
     const int integer = (flags & SQ_PARAM_VERIFY_INTEGER) != 0;
 
-    /* every UV point belongs to one vertex */
     owner = malloc((size_t)P->nuv * sizeof *owner);
     if (!owner) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    for (uint32_t t = 0; t < P->nuv; t++) owner[t] = SQ_NONE;
-    for (uint32_t c = 0; c < m.nh; c++) {
-        uint32_t t = P->tri_uv[c], v = P->tri[c];
-        if (owner[t] == SQ_NONE) owner[t] = v;
-        else if (owner[t] != v) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL,
-                              "%s: UV point %" PRIu32 " is used by vertex %" PRIu32
-                              " and by vertex %" PRIu32 " (face %" PRIu32 "); a UV point belongs to one vertex",
-                              who, t, owner[t], v, c / 3);
-            goto done;
-        }
-    }
-
-    /* (a) orientation, exactly */
-    {
-        uint32_t nflip = 0, nzero = 0, first = SQ_NONE;
-        int first_sign = 0;
-        for (uint32_t f = 0; f < P->nf; f++) {
-            const uint32_t *t = P->tri_uv + 3 * (size_t)f;
-            int s = sq_orient2d(UV(P, t[0]), UV(P, t[1]), UV(P, t[2]));
-            if (s > 0) continue;
-            if (s < 0) nflip++;
-            else nzero++;
-            if (first == SQ_NONE) first = f, first_sign = s;
-        }
-        if (first != SQ_NONE) {
-            const uint32_t *v = P->tri + 3 * (size_t)first;
-            st = sq_error_set(err, SQ_ERR_INTERNAL,
-                              "%s: face %" PRIu32 " (vertices %" PRIu32 ", %" PRIu32 ", %" PRIu32
-                              ") is %s in UV (exact orientation test); %" PRIu32
-                              " flipped and %" PRIu32 " zero-area UV triangles in all",
-                              who, first, v[0], v[1], v[2],
-                              first_sign < 0 ? "flipped (clockwise)" : "degenerate (zero area)", nflip,
-                              nzero);
-            goto done;
-        }
-    }
-
-    /* he_seam agrees with the UV indices */
-    if (P->he_seam)
-        for (uint32_t h = 0; h < m.nh; h++)
-            if (!P->he_seam[h] != !is_seam(&m, P, h)) {
-                st = sq_error_set(err, SQ_ERR_INTERNAL,
-                                  "%s: he_seam of face %" PRIu32 ", corner %" PRIu32
-                                  " says %s, but edge (%" PRIu32 ", %" PRIu32 ") %s",
-                                  who, h / 3, h % 3, P->he_seam[h] ? "seam" : "no seam", m.he_vert[h],
-                                  he_dst(&m, h),
-                                  P->he_seam[h] ? "has the same UV points on both sides"
-                                                : "has different UV points on its two sides");
-                goto done;
-            }
-
-    /* (b) every seam edge: rotation by k x 90 degrees plus a translation,
-     * exactly; integer translations with SQ_PARAM_VERIFY_INTEGER */
-    {
-        uint32_t nbad = 0, nnonint = 0, bad = SQ_NONE, nonint = SQ_NONE;
-        for (uint32_t h = 0; h < m.nh; h++) {
-            if (h > m.he_twin[h] || !is_seam(&m, P, h)) continue;
-            transition T = edge_transition(&m, P, h);
-            if (T.r < 0) {
-                if (!nbad++) bad = h;
-                continue;
-            }
-            if (integer) {
-                double Rp[2];
-                rot(T.r, T.px, Rp);
-                if (!sum_integral(T.qx[0], -Rp[0]) || !sum_integral(T.qx[1], -Rp[1]))
-                    if (!nnonint++) nonint = h;
-            }
-        }
-        if (nbad) {
-            transition T = edge_transition(&m, P, bad);
-            int r = 0;
-            double res = best_residual(&T, &r);
-            st = sq_error_set(err, SQ_ERR_INTERNAL,
-                              "%s: seam edge (%" PRIu32 ", %" PRIu32 ") between faces %" PRIu32
-                              " and %" PRIu32
-                              ": its two UV copies are not related exactly by a rotation by a "
-                              "multiple of 90 degrees plus a translation (closest: rotation by %d "
-                              "degrees, off by %.3g); %" PRIu32 " such seam edges in all",
-                              who, m.he_vert[bad], he_dst(&m, bad), bad / 3, m.he_twin[bad] / 3,
-                              90 * r, res, nbad);
-            goto done;
-        }
-        if (nnonint) {
-            transition T = edge_transition(&m, P, nonint);
-            double Rp[2];
-            rot(T.r, T.px, Rp);
-            st = sq_error_set(err, SQ_ERR_INTERNAL,
-                              "%s: seam edge (%" PRIu32 ", %" PRIu32 ") between faces %" PRIu32
-                              " and %" PRIu32 ": translation (%.17g, %.17g) of its transition "
-                              "(rotation by %d degrees) is not integer; %" PRIu32
-                              " such seam edges in all (an integer grid map needs integer "
-                              "translations)",
-                              who, m.he_vert[nonint], he_dst(&m, nonint), nonint / 3,
-                              m.he_twin[nonint] / 3, T.qx[0] - Rp[0], T.qx[1] - Rp[1], 90 * T.r,
-                              nnonint);
-            goto done;
-        }
-    }
-
-    /* (b') one transition per seam curve */
+    if ((st = check_uv_owners(P, &m, owner, who, err)) || (st = check_orientation(P, who, err)) ||
+        (st = check_he_seam(P, &m, who, err)) || (st = check_seam_edges(P, &m, integer, who, err)))
+        goto done;
     st = find_curves(&m, P, &C, err);
     if (st) goto done;
-    for (uint32_t i = 0; i < C.n; i++) {
-        uint32_t h0 = C.first[i];
-        transition T0 = edge_transition(&m, P, h0);
-        uint32_t h = h0, len = 0;
-        for (;;) {
-            len++;
-            if (h != h0) {
-                transition T = edge_transition(&m, P, h);
-                if (T.r != T0.r || !same_translation(T0.r, T0.px, T0.qx, T.px, T.qx)) {
-                    st = sq_error_set(err, SQ_ERR_INTERNAL,
-                                      "%s: seam curve %" PRIu32 " from vertex %" PRIu32
-                                      " has two transitions: edge (%" PRIu32 ", %" PRIu32
-                                      ") (edge %" PRIu32 " along the curve) has rotation %d "
-                                      "degrees%s, its first edge (%" PRIu32 ", %" PRIu32
-                                      ") rotation %d degrees; a seam curve has one transition",
-                                      who, i, m.he_vert[h0], m.he_vert[h], he_dst(&m, h), len - 1,
-                                      90 * T.r, T.r == T0.r ? " and another translation" : "",
-                                      m.he_vert[h0], he_dst(&m, h0), 90 * T0.r);
-                    goto done;
-                }
-            }
-            uint32_t y = he_dst(&m, h);
-            if (is_node(&C, P, y)) break;
-            uint32_t g = next_seam_out(&m, &C, h);
-            if (g == SQ_NONE || g == h0 || C.curve[g] != i || !C.dir[g]) break;
-            h = g;
-        }
-    }
-
-    /* integer grid map: cones at integer points */
-    if (integer)
-        for (uint32_t c = 0; c < m.nh; c++) {
-            uint32_t v = P->tri[c];
-            if (!is_cone(P, v)) continue;
-            const double *p = UV(P, P->tri_uv[c]);
-            if (floor(p[0]) != p[0] || floor(p[1]) != p[1]) {
-                st = sq_error_set(err, SQ_ERR_INTERNAL,
-                                  "%s: cone vertex %" PRIu32 " (valence %" PRId32
-                                  ") has UV point %" PRIu32 " = (%.17g, %.17g), not an integer "
-                                  "point (face %" PRIu32 "); an integer grid map puts cones on "
-                                  "the grid",
-                                  who, v, P->valence[v], P->tri_uv[c], p[0], p[1], c / 3);
-                goto done;
-            }
-        }
-
-    /* (c) angle sums */
+    if ((st = check_curve_transitions(P, &m, &C, who, err)))
+        goto done;
+    if (integer && (st = check_integer_cones(P, &m, who, err)))
+        goto done;
     angle = calloc(P->nv, sizeof *angle);
     if (!angle) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    for (uint32_t f = 0; f < P->nf; f++) {
-        const uint32_t *t = P->tri_uv + 3 * (size_t)f;
-        for (int k = 0; k < 3; k++)
-            angle[P->tri[3 * (size_t)f + k]] +=
-                corner_angle(UV(P, t[k]), UV(P, t[(k + 1) % 3]), UV(P, t[(k + 2) % 3]));
-    }
-    {
-        uint32_t nbad = 0, bad = SQ_NONE;
-        for (uint32_t v = 0; v < P->nv; v++) {
-            int32_t k = P->valence && v < P->nv_input ? P->valence[v] : 4;
-            double want = k * HALF_PI;
-            if (!(fabs(angle[v] - want) <= ANGLE_RTOL * want))
-                if (!nbad++) bad = v;
-        }
-        if (nbad) {
-            int32_t k = P->valence && bad < P->nv_input ? P->valence[bad] : 4;
-            st = sq_error_set(err, SQ_ERR_INTERNAL,
-                              "%s: vertex %" PRIu32 " (%s) has UV angle sum %.17g = %.6f x pi/2, "
-                              "expected %" PRId32 " x pi/2 (%s); %" PRIu32
-                              " vertices with a wrong angle sum in all",
-                              who, bad, bad < P->nv_input ? "input vertex" : "added vertex",
-                              angle[bad], angle[bad] / HALF_PI, k,
-                              bad < P->nv_input ? (k == 4 ? "regular" : "its cone") : "added vertices are regular",
-                              nbad);
-            goto done;
-        }
-    }
+    if ((st = check_angle_sums(P, angle, who, err)))
+        goto done;
     st = SQ_OK;
 done:
     free(owner);

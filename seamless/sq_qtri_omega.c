@@ -28,28 +28,31 @@ static uint32_t ccw_cut(const sq_tsurf *S, uint32_t h)
 
 static int is_tree(const sq_tsurf *S, uint32_t h) { return S->kind[h] && S->label[h] == SQ_NONE; }
 
-sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint32_t *nseg_out, uint32_t **seg_from,
-                        uint32_t **seg_to, sq_error *err)
+/* state shared by the steps of sq_qtri_omega */
+typedef struct qomega_ctx {
+    const sq_qtri *T;
+    const sq_domain *D;
+    sq_omega *O;
+    const sq_tsurf *S;
+    sq_metapolygon *W;
+    uint32_t k, nh;
+    uint32_t *bidx;   /* cut face halfedge -> b(h) - nh */
+    uint32_t *wv;     /* corner -> vertex of Omega_c   */
+    uint32_t *vid;    /* uncut vertex -> its vertex    */
+    double *cxy;
+    uint32_t *par, *queue;
+    uint32_t *seg_he; /* tree halfedge away from the root -> segment */
+    uint32_t *from, *to, nseg;
+    uint32_t nb, nw;  /* boundary halfedges and vertices of Omega_c */
+    uint8_t *lab_seen;
+} qomega_ctx;
+
+/* vertices: one per uncut vertex and one per sector at the cut */
+static void qo_vertices(qomega_ctx *x)
 {
-    const sq_tsurf *S = &T->S;
-    const uint32_t k = D->k, nh = S->nh;
-    sq_omega_free(O);
-    *nseg_out = 0, *seg_from = *seg_to = NULL;
-    uint32_t *bidx = malloc((size_t)nh * sizeof *bidx);  /* cut face halfedge -> b(h) - nh */
-    uint32_t *wv = malloc((size_t)nh * sizeof *wv);      /* corner -> vertex of Omega_c   */
-    uint32_t *vid = malloc((size_t)S->nv * sizeof *vid); /* uncut vertex -> its vertex    */
-    double *cxy = malloc(2 * (size_t)nh * sizeof *cxy);
-    uint32_t *par = malloc((size_t)S->nv * sizeof *par), *queue = malloc((size_t)S->nv * sizeof *queue);
-    uint32_t *seg_he = malloc((size_t)nh * sizeof *seg_he); /* tree halfedge away from the root -> segment */
-    uint32_t *from = NULL, *to = NULL, nseg = 0;
-    sq_status st = SQ_OK;
-    if (!bidx || !wv || !vid || !cxy || !par || !queue || !seg_he) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
-        goto done;
-    }
-    st = sq_qtri_layout(T, cxy, err);
-    if (st) goto done;
-    /* vertices */
+    const sq_tsurf *S = x->S;
+    const uint32_t nh = x->nh;
+    uint32_t *bidx = x->bidx, *wv = x->wv, *vid = x->vid;
     uint32_t nb = 0, nw = 0;
     for (uint32_t h = 0; h < nh; h++) bidx[h] = S->kind[h] ? nb++ : SQ_NONE;
     for (uint32_t v = 0; v < S->nv; v++) vid[v] = S->v_ncut[v] ? SQ_NONE : nw++;
@@ -61,11 +64,19 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
     }
     for (uint32_t h = 0; h < nh; h++)
         if (wv[h] == SQ_NONE) wv[h] = wv[sq_tsurf_sector_of(S, h)];
-    /* the cut disk */
-    sq_metapolygon *W = &O->cut;
+    x->nb = nb, x->nw = nw;
+}
+
+/* the cut disk */
+static sq_status qo_cut_disk(qomega_ctx *x, sq_error *err)
+{
+    const sq_tsurf *S = x->S;
+    const uint32_t nh = x->nh, nb = x->nb, nw = x->nw;
+    const uint32_t *bidx = x->bidx, *wv = x->wv;
+    sq_metapolygon *W = x->W = &x->O->cut;
     sq_metapolygon_init(W);
-    st = sq_metapolygon_reserve(W, nw, S->nf, (uint64_t)nh + nb, err);
-    if (st) goto done;
+    sq_status st = sq_metapolygon_reserve(W, nw, S->nf, (uint64_t)nh + nb, err);
+    if (st) return st;
     W->nv = nw, W->nf = S->nf, W->nh = nh + nb, W->nbnd = nb;
     for (uint32_t v = 0; v < nw; v++) W->v_nface[v] = 0, W->v_he[v] = SQ_NONE;
     for (uint32_t f = 0; f < S->nf; f++) W->f_he[f] = S->f_he[f], W->f_valence[f] = 3;
@@ -85,19 +96,24 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
     /* a boundary vertex's v_he: its outgoing boundary halfedge */
     for (uint32_t h = 0; h < nh; h++)
         if (S->kind[h]) W->v_he[wv[h]] = nh + bidx[S->twin[ccw_cut(S, h)]];
-    W->bnd_he = nh + bidx[T->root_he];
-    st = sq_metapolygon_validate(W, 0, err);
-    if (st) goto done;
-    /* tree segments, walked away from the root */
+    W->bnd_he = nh + bidx[x->T->root_he];
+    return sq_metapolygon_validate(W, 0, err);
+}
+
+/* tree segments, walked away from the root */
+static sq_status qo_segments(qomega_ctx *c, sq_error *err)
+{
+    const sq_tsurf *S = c->S;
+    const sq_qtri *T = c->T;
+    const uint32_t nh = c->nh;
+    uint32_t *par = c->par, *queue = c->queue, *seg_he = c->seg_he;
     for (uint32_t v = 0; v < S->nv; v++) par[v] = SQ_NONE;
     for (uint32_t h = 0; h < nh; h++) seg_he[h] = SQ_NONE;
-    uint32_t nq = 0;
+    uint32_t nq = 0, nseg = 0;
     queue[nq++] = T->root, par[T->root] = T->root;
-    from = malloc(((size_t)S->nv + 1) * sizeof *from), to = malloc(((size_t)S->nv + 1) * sizeof *to);
-    if (!from || !to) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
-        goto done;
-    }
+    uint32_t *from = c->from = malloc(((size_t)S->nv + 1) * sizeof *from), *to = c->to = malloc(((size_t)S->nv + 1) * sizeof *to);
+    if (!from || !to)
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
     for (uint32_t i = 0; i < nq; i++) {
         uint32_t x = queue[i], h0 = S->v_he[x], h = h0, deg = 0;
         do {
@@ -125,15 +141,26 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
                     }
                     seg_he[h] = s, to[s] = y;
                 } else if (par[x] != y) {
-                    st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: the tree has a cycle at vertex %u", x);
-                    goto done;
+                    return sq_error_set(err, SQ_ERR_INTERNAL, "Omega: the tree has a cycle at vertex %u", x);
                 }
             }
             h = sq_ts_ccw(S, h);
         } while (h != h0);
     }
-    /* labels */
-    const uint32_t lr = k + 2 * nseg, nl = lr + 2;
+    c->nseg = nseg;
+    return SQ_OK;
+}
+
+/* labels: Omega's arrays, the labels' sides and partners, every boundary
+ * halfedge's label (a side's, or a tree segment's left or right copy) */
+static sq_status qo_labels(qomega_ctx *x, sq_error *err)
+{
+    const sq_tsurf *S = x->S;
+    const sq_domain *D = x->D;
+    sq_omega *O = x->O;
+    const sq_metapolygon *W = x->W;
+    const uint32_t k = x->k, nh = x->nh, nw = x->nw, *bidx = x->bidx, *seg_he = x->seg_he;
+    const uint32_t lr = k + 2 * x->nseg, nl = lr + 2;
     O->k = k, O->nlabels = nl;
     O->he_label = malloc((size_t)W->nh * sizeof *O->he_label);
     O->he_partner = malloc((size_t)W->nh * sizeof *O->he_partner);
@@ -144,22 +171,16 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
     O->xy = malloc(2 * (size_t)nw * sizeof *O->xy);
     O->v_qvert = malloc((size_t)nw * sizeof *O->v_qvert);
     O->he_qhe = malloc((size_t)W->nh * sizeof *O->he_qhe);
-    uint8_t *lab_seen = calloc(nl, 1);
+    x->lab_seen = calloc(nl, 1);
     if (!O->he_label || !O->he_partner || !O->label_side || !O->label_partner || !O->label_rot || !O->label_t || !O->xy ||
-        !O->v_qvert || !O->he_qhe || !lab_seen) {
-        free(lab_seen);
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
-        goto done;
-    }
+        !O->v_qvert || !O->he_qhe || !x->lab_seen)
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
     for (uint32_t l = 0; l < nl; l++) {
         O->label_side[l] = l < k ? l : SQ_NONE;
         O->label_partner[l] = l < k ? D->pattern.partner[l] : l ^ 1u;
     }
-    if (D->k & 1) { /* k is even for every pattern (8g - 4, 6, 2) */
-        free(lab_seen);
-        st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: odd number of sides");
-        goto done;
-    }
+    if (D->k & 1) /* k is even for every pattern (8g - 4, 6, 2) */
+        return sq_error_set(err, SQ_ERR_INTERNAL, "Omega: odd number of sides");
     for (uint32_t h = 0; h < W->nh; h++) O->he_label[h] = O->he_partner[h] = SQ_NONE;
     for (uint32_t h = 0; h < nh; h++) {
         O->he_qhe[h] = h;
@@ -170,49 +191,57 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
         if (S->label[h] != SQ_NONE) l = S->label[h];
         else if (seg_he[h] != SQ_NONE) l = k + 2 * seg_he[h];
         else if (seg_he[S->twin[h]] != SQ_NONE) l = k + 2 * seg_he[S->twin[h]] + 1;
-        else {
-            free(lab_seen);
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: tree edge %u-%u in no segment", S->vert[h],
-                              sq_ts_head(S, h));
-            goto done;
-        }
+        else
+            return sq_error_set(err, SQ_ERR_INTERNAL, "Omega: tree edge %u-%u in no segment", S->vert[h],
+                                sq_ts_head(S, h));
         O->he_label[b] = l;
     }
-    /* the root splits its side: the part after it (clockwise, along the
-     * boundary loop, which leaves the root along the side's edge whose face
-     * halfedge h1 runs into the root) and the partner's part glued to it */
-    {
-        uint32_t h1 = SQ_NONE, x0 = S->v_he[T->root], x = x0;
-        do {
-            uint32_t in = S->twin[x];
-            /* the side's other edge at the root, its face halfedge running
-             * into the root (not root_he's edge) */
-            if (S->kind[in] && S->label[in] == T->root_side && S->twin[in] != T->root_he) h1 = in;
-            x = sq_ts_ccw(S, x);
-        } while (x != x0);
-        if (h1 == SQ_NONE || O->he_label[nh + bidx[T->root_he]] != T->root_side) {
-            free(lab_seen);
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: the root has no edges on its side");
-            goto done;
-        }
-        uint32_t n = 0;
-        for (uint32_t b = nh + bidx[h1]; O->he_label[b] == T->root_side && n <= nb; b = W->he_next[b], n++) {
-            O->he_label[b] = lr;
-            O->he_label[O->he_partner[b]] = lr + 1;
-        }
+    return SQ_OK;
+}
+
+/* the root splits its side: the part after it (clockwise, along the
+ * boundary loop, which leaves the root along the side's edge whose face
+ * halfedge h1 runs into the root) and the partner's part glued to it */
+static sq_status qo_root_split(qomega_ctx *c, sq_error *err)
+{
+    const sq_tsurf *S = c->S;
+    const sq_qtri *T = c->T;
+    sq_omega *O = c->O;
+    const uint32_t nh = c->nh, nb = c->nb, *bidx = c->bidx, lr = c->k + 2 * c->nseg;
+    uint32_t h1 = SQ_NONE, x0 = S->v_he[T->root], x = x0;
+    do {
+        uint32_t in = S->twin[x];
+        /* the side's other edge at the root, its face halfedge running
+         * into the root (not root_he's edge) */
+        if (S->kind[in] && S->label[in] == T->root_side && S->twin[in] != T->root_he) h1 = in;
+        x = sq_ts_ccw(S, x);
+    } while (x != x0);
+    if (h1 == SQ_NONE || O->he_label[nh + bidx[T->root_he]] != T->root_side)
+        return sq_error_set(err, SQ_ERR_INTERNAL, "Omega: the root has no edges on its side");
+    uint32_t n = 0;
+    for (uint32_t b = nh + bidx[h1]; O->he_label[b] == T->root_side && n <= nb; b = c->W->he_next[b], n++) {
+        O->he_label[b] = lr;
+        O->he_label[O->he_partner[b]] = lr + 1;
     }
-    /* transitions: one per label, the same on every edge of it */
+    return SQ_OK;
+}
+
+/* Omega's integer positions: the common power-of-two scale of the layout,
+ * each vertex's position and Q vertex, the bounding box */
+static sq_status qo_positions(qomega_ctx *c, sq_error *err)
+{
+    const sq_tsurf *S = c->S;
+    sq_omega *O = c->O;
+    const uint32_t nh = c->nh, nw = c->nw, *wv = c->wv;
+    const double *cxy = c->cxy;
     int shift = 0;
     for (uint32_t h = 0; h < nh; h++)
         for (int q = 0; q < 2; q++) {
             double x = cxy[2 * h + (uint32_t)q];
             int s = 0;
             while (s <= 40 && ldexp(x, s) != nearbyint(ldexp(x, s))) s++;
-            if (s > 40) {
-                free(lab_seen);
-                st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: a position is finer than 2^-40");
-                goto done;
-            }
+            if (s > 40)
+                return sq_error_set(err, SQ_ERR_INTERNAL, "Omega: a position is finer than 2^-40");
             shift = s > shift ? s : shift;
         }
     O->xy_shift = shift;
@@ -228,12 +257,24 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
         O->xmin = x < O->xmin ? x : O->xmin, O->xmax = x > O->xmax ? x : O->xmax;
         O->ymin = y < O->ymin ? y : O->ymin, O->ymax = y > O->ymax ? y : O->ymax;
     }
+    return SQ_OK;
+}
+
+/* transitions: one per label, the same on every edge of it */
+static sq_status qo_transitions(qomega_ctx *c, sq_error *err)
+{
+    const sq_tsurf *S = c->S;
+    sq_omega *O = c->O;
+    const uint32_t nh = c->nh, nl = O->nlabels, *bidx = c->bidx;
+    const int shift = O->xy_shift;
+    uint8_t *lab_seen = c->lab_seen;
+    sq_status st = SQ_OK;
     for (uint32_t h = 0; h < nh && st == SQ_OK; h++) {
         if (!S->kind[h]) continue;
         uint32_t l = O->he_label[nh + bidx[h]];
         uint8_t rot;
         double t[2];
-        if (!sq_qtri_transition(T, cxy, h, &rot, t) || t[0] != nearbyint(t[0]) || t[1] != nearbyint(t[1])) {
+        if (!sq_qtri_transition(c->T, c->cxy, h, &rot, t) || t[0] != nearbyint(t[0]) || t[1] != nearbyint(t[1])) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: edge %u-%u has no integer transition", S->vert[h],
                               sq_ts_head(S, h));
             break;
@@ -248,14 +289,41 @@ sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint3
     }
     for (uint32_t l = 0; l < nl && st == SQ_OK; l++)
         if (!lab_seen[l]) st = sq_error_set(err, SQ_ERR_INTERNAL, "Omega: label %u has no edge", l);
-    free(lab_seen);
+    return st;
+}
+
+sq_status sq_qtri_omega(const sq_qtri *T, const sq_domain *D, sq_omega *O, uint32_t *nseg_out, uint32_t **seg_from,
+                        uint32_t **seg_to, sq_error *err)
+{
+    const sq_tsurf *S = &T->S;
+    const uint32_t k = D->k, nh = S->nh;
+    sq_omega_free(O);
+    *nseg_out = 0, *seg_from = *seg_to = NULL;
+    qomega_ctx x = {.T = T, .D = D, .O = O, .S = S, .k = k, .nh = nh};
+    x.bidx = malloc((size_t)nh * sizeof *x.bidx);
+    x.wv = malloc((size_t)nh * sizeof *x.wv);
+    x.vid = malloc((size_t)S->nv * sizeof *x.vid);
+    x.cxy = malloc(2 * (size_t)nh * sizeof *x.cxy);
+    x.par = malloc((size_t)S->nv * sizeof *x.par), x.queue = malloc((size_t)S->nv * sizeof *x.queue);
+    x.seg_he = malloc((size_t)nh * sizeof *x.seg_he);
+    sq_status st = SQ_OK;
+    if (!x.bidx || !x.wv || !x.vid || !x.cxy || !x.par || !x.queue || !x.seg_he) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Omega)");
+        goto done;
+    }
+    st = sq_qtri_layout(T, x.cxy, err);
     if (st) goto done;
+    qo_vertices(&x);
+    if ((st = qo_cut_disk(&x, err)) || (st = qo_segments(&x, err)) || (st = qo_labels(&x, err)) ||
+        (st = qo_root_split(&x, err)) || (st = qo_positions(&x, err)) || (st = qo_transitions(&x, err)))
+        goto done;
     O->root_side = T->root_side, O->root_pos = T->root_pos;
-    *nseg_out = nseg, *seg_from = from, *seg_to = to;
-    from = to = NULL;
+    *nseg_out = x.nseg, *seg_from = x.from, *seg_to = x.to;
+    x.from = x.to = NULL;
 done:
-    free(bidx), free(wv), free(vid), free(cxy), free(par), free(queue), free(seg_he);
-    free(from), free(to);
+    free(x.lab_seen);
+    free(x.bidx), free(x.wv), free(x.vid), free(x.cxy), free(x.par), free(x.queue), free(x.seg_he);
+    free(x.from), free(x.to);
     if (st) sq_omega_free(O);
     return st;
 }
