@@ -85,15 +85,6 @@ void sq_cli_name_file(sq_error *err, const char *path)
     sq_error_set(err, err->code, "%s: %s", path, msg);
 }
 
-sq_status sq_cli_write_quads(const char *path, const sq_quad_mesh *Q, sq_error *err)
-{
-    uint32_t *off = malloc(((size_t)Q->nq + 1) * sizeof *off);
-    if (!off) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    for (uint32_t f = 0; f <= Q->nq; f++) off[f] = 4 * f;
-    sq_status st = sq_write_obj(path, Q->nv, Q->pos, Q->nq, off, Q->quad, 0, NULL, NULL, err);
-    free(off);
-    return st;
-}
 
 sq_status sq_cli_probe_output(const char *path, sq_error *err)
 {

@@ -54,9 +54,6 @@ void sq_json_string(FILE *f, const char *s);
  * cone file's path (the library's messages know vertices, not files). */
 sq_status sq_cli_read_cones(const char *path, const sq_mesh *mesh, int32_t *val, sq_error *err);
 
-struct sq_quad_mesh;
-/* Writes the quads of Q as OBJ (v and f lines, atomically; sq_write_obj). */
-sq_status sq_cli_write_quads(const char *path, const struct sq_quad_mesh *Q, sq_error *err);
 
 /* Exit code for a library status. */
 int sq_exit_code(sq_status st);

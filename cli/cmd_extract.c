@@ -302,7 +302,7 @@ int sq_cmd_extract(int argc, char **argv)
         }
         stage = "write";
         double t1 = sq_now();
-        st = sq_cli_write_quads(r.out_path, &Q, &err);
+        st = sq_quad_mesh_write_obj(r.out_path, &Q, &err);
         r.t_write = sq_now() - t1;
     }
     r.t_total = sq_now() - t0;

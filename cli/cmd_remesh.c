@@ -442,7 +442,7 @@ int sq_cmd_remesh(int argc, char **argv)
             const char *path = outs[written];
             if (!path) continue;
             if (written == 0) {
-                st = sq_cli_write_quads(path, &R.quads, &err);
+                st = sq_quad_mesh_write_obj(path, &R.quads, &err);
             } else if (written == 1) {
                 char title[256];
                 snprintf(title, sizeof title, "%s: %u quads, %u irregular vertices (the cones)", mesh_path,

@@ -1,5 +1,5 @@
 /* A quad mesh from a closed triangle mesh through libseamquad's public API:
- * what `seamquad remesh MESH -o QUADS.obj --quads N` does, in 80 lines.
+ * what `seamquad remesh MESH -o QUADS.obj --quads N` does, in 70 lines.
  *
  *   remesh MESH QUADS.obj [N]
  *
@@ -27,17 +27,6 @@ static void progress(void *user, const char *stage, double fraction)
     fprintf(stderr, "  [%3.0f%%] %s\n", 100 * fraction, stage);
 }
 
-/* The quads as an OBJ file: face k has corners quad[4k .. 4k+3]. */
-static sq_status write_quads(const char *path, const sq_quad_mesh *Q, sq_error *err)
-{
-    uint32_t *off = malloc(((size_t)Q->nq + 1) * sizeof *off);
-    if (!off) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    for (uint32_t k = 0; k <= Q->nq; k++) off[k] = 4 * k;
-    sq_status st = sq_write_obj(path, Q->nv, Q->pos, Q->nq, off, Q->quad, 0, NULL, NULL, err);
-    free(off);
-    return st;
-}
-
 int main(int argc, char **argv)
 {
     if (argc < 3 || argc > 4) {
@@ -60,7 +49,7 @@ int main(int argc, char **argv)
     if (!st) st = sq_mesh_from_soup(&soup, 0, &mesh, &err);
     /* valence NULL: cones from the cross field. */
     if (!st) st = sq_remesh(&mesh, NULL, &opt, &result, &stats, &err);
-    if (!st) st = write_quads(argv[2], &result.quads, &err);
+    if (!st) st = sq_quad_mesh_write_obj(argv[2], &result.quads, &err);
     if (st) {
         /* On failure stats.stage names the stage that failed. */
         fprintf(stderr, "remesh: %s%s%s\n", stats.stage ? stats.stage : "",

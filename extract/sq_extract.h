@@ -101,6 +101,10 @@ sq_status sq_extract(const sq_map *M, sq_quad_mesh *out, sq_extract_stats *stats
 /* Frees every array and zeroes the struct. Safe on a zeroed struct. */
 void sq_quad_mesh_free(sq_quad_mesh *q);
 
+/* Writes the quads of Q as OBJ: `v` and `f` lines, atomically (sq_write_obj:
+ * on failure nothing is left at path). */
+sq_status sq_quad_mesh_write_obj(const char *path, const sq_quad_mesh *Q, sq_error *err);
+
 typedef struct sq_untangle_stats {
     uint32_t folded_before, folded_after; /* quads folded in 3D (the referee's */
                                           /* test: both triangulations)       */
