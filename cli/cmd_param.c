@@ -319,6 +319,9 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            "%llu,\n  \"quads\": %llu,\n",
            s->cut_edges, (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
            (unsigned long long)(s->quads_unpadded + s->quads_added));
+    printf("  \"rotation_mismatch_before\": %u,\n  \"rotation_mismatch_after\": %u,\n"
+           "  \"rotation_reroutes\": %u,\n",
+           s->rot_mismatch_before, s->rot_mismatch_after, s->rot_reroutes);
     printf("  \"attempts\": %u,\n  \"seed_used\": %llu,\n  \"guided\": %s,\n  \"surface_tree\": %s,\n",
            s->attempts, (unsigned long long)s->seed_used, s->guided ? "true" : "false",
            s->surface_tree ? "true" : "false");
@@ -385,6 +388,12 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
            : s->surface_tree ? "guided (seed 9.2), cone tree from the surface (seed 9.4)"
                              : "guided (seed 9.2), cone tree from the domain");
     printf("cut graph      %u edges\n", s->cut_edges);
+    if (s->genus >= 1)
+        printf("rotations      %s (mismatch with the smooth field's %u before steering, %u after; %u "
+               "branches rerouted)\n",
+               s->rot_mismatch_after ? "differ from a smooth cross field's around some handle"
+                                     : "those of a smooth cross field with these cones",
+               s->rot_mismatch_before, s->rot_mismatch_after, s->rot_reroutes);
     printf("domain         %llu quads before padding + %llu padding = %llu\n",
            (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
            (unsigned long long)(s->quads_unpadded + s->quads_added));

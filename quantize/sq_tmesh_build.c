@@ -33,6 +33,9 @@ typedef struct rarc {
     uint32_t piece_off, piece_count;
     double length, length3d;
     double tau_a;              /* tau at a */
+    double end_ss, end_b;      /* tau at b = end_ss + end_b: sigma s (the  */
+                               /* end's coordinate along the line, signed) */
+                               /* and the piece's offset, kept apart       */
 } rarc;
 
 typedef struct builder {
@@ -76,16 +79,29 @@ static double node_s(const builder *B, uint32_t n, const tm_piece *P, int *exact
     return q[r];
 }
 
-/* tau (parametric distance from the trace's cone) at a position */
-static double tau_at(const builder *B, uint32_t t, const tpos *p)
+/* tau (parametric distance from the trace's cone) at a position, as
+ * sigma s (*ss) plus the piece's offset (*b) */
+static void tau_parts(const builder *B, uint32_t t, const tpos *p, double *ss, double *b)
 {
-    if (p->kind == 0) return 0;
+    *ss = 0, *b = 0;
+    if (p->kind == 0) return;
     const tm_piece *P = piece_of(B, t, p->k);
-    if (p->kind == 1) return tm_sigma(P->dir) * p->s + P->b;
+    *b = P->b;
+    if (p->kind == 1) {
+        *ss = tm_sigma(P->dir) * p->s;
+        return;
+    }
     int ex;
     double s = node_s(B, p->node, P, &ex);
     if (!ex && P->s1_exact) s = P->s1;
-    return tm_sigma(P->dir) * s + P->b;
+    *ss = tm_sigma(P->dir) * s;
+}
+
+static double tau_at(const builder *B, uint32_t t, const tpos *p)
+{
+    double ss, b;
+    tau_parts(B, t, p, &ss, &b);
+    return ss + b;
 }
 
 static void piece_point(const sq_map *M, const sq_tmesh_piece *P, const sq_tmesh_end *e, double out[3])
@@ -285,7 +301,8 @@ sq_status sq_tmesh_build(const sq_map *M, sq_tmesh *out, sq_tmesh_stats *stats, 
             }
             A->piece_count = n_rp - A->piece_off;
             A->tau_a = tau_at(&B, t, &pos[i]);
-            A->length = tau_at(&B, t, &pos[i + 1]) - A->tau_a;
+            tau_parts(&B, t, &pos[i + 1], &A->end_ss, &A->end_b);
+            A->length = (A->end_ss + A->end_b) - A->tau_a;
             const tm_node *N0 = &T.nodes[A->node[0]], *N1 = &T.nodes[A->node[1]];
             const sq_tmesh_piece *f0 = &rp[A->piece_off], *f1 = &rp[n_rp - 1];
             if (A->piece_count == 0 || !slot_of(M, N0, f0->face, f0->dir, &A->slot[0]) ||
@@ -374,11 +391,16 @@ sq_status sq_tmesh_build(const sq_map *M, sq_tmesh *out, sq_tmesh_stats *stats, 
                 }
                 uint32_t me = 2 * r + (uint32_t)(1 - from), e0 = inc[inc_off[far]], e1 = inc[inc_off[far] + 1];
                 uint32_t other = e0 == me ? e1 : e0;
-                if (T.nodes[far].has_sum && from == 0 && (other & 1) == 1) {
-                    /* a head-on meeting at a rounded point: the two traces'
-                     * tau there sum to an exact value */
+                if (from == 0 && (other & 1) == 1) {
+                    /* a head-on meeting: the two traces' tau there sum to
+                     * an exact value (the node's, where its point is
+                     * rounded; else sigma s + sigma' s' of one point in two
+                     * charts, exact where the charts agree exactly, plus
+                     * the offsets), where adding the two lengths rounds */
                     const rarc *Y = &ra[other >> 1];
-                    A->length += (T.nodes[far].sum - X->tau_a - Y->tau_a) - X->length - Y->length;
+                    const double sum = T.nodes[far].has_sum ? T.nodes[far].sum
+                                                            : (X->end_ss + Y->end_ss) + (X->end_b + Y->end_b);
+                    A->length += (sum - X->tau_a - Y->tau_a) - X->length - Y->length;
                 }
                 r = other >> 1, from = (int)(other & 1);
                 if (used[r]) {

@@ -56,9 +56,9 @@ typedef struct tm_mark {
     uint32_t node;
 } tm_mark;
 
-/* has_sum: a head-on meeting of two traces at a point known only as a line
- * on an edge; sum = the sum of the two traces' tau there (exact at integer
- * maps, though the point is not) */
+/* has_sum: a head-on meeting of two traces at a point known only in
+ * floating point (on an edge or inside a face); sum = the sum of the two
+ * traces' tau there (exact at integer maps, though the point is not) */
 typedef struct tm_node {
     uint8_t kind, exact, has_sum;
     double sum;

@@ -752,19 +752,22 @@ static int step(tracer *tr, uint32_t t)
             if (node == TM_NONE || !add_mark(tr, t, T->pieces[tt->last].k, 1, 0, node)) return 0;
             tt->tau = tm_sigma(P.dir) * P.s1 + P.b;
         }
-        if (best.meet) {
+        if (best.meet || best.headon) {
+            /* two traces head-on on one line: tau_A + tau_B is constant
+             * along it; taken at the line's point of coordinate 0 in the
+             * face's chart, it is exact where the meeting point is not (or
+             * is exact but off the integer grid, where adding the two
+             * traces' lengths would round) */
             const tm_piece *Q = &T->pieces[best.q];
-            if (!best.exact && best.loc == LOC_EDGE) {
-                /* tau_A + tau_B is constant along the common line: take it at
-                 * the line's point of coordinate 0 in the face's chart */
-                double Y[2], Yq[2];
-                Y[tm_rc(P.dir)] = 0, Y[tm_cc(P.dir)] = P.c;
-                if (to_piece_chart(M, Q, best.F, Y, Yq)) {
-                    T->nodes[node].has_sum = 1;
-                    T->nodes[node].sum = P.b + tm_sigma(Q->dir) * Yq[tm_rc(Q->dir)] + Q->b;
-                }
+            double Y[2], Yq[2];
+            Y[tm_rc(P.dir)] = 0, Y[tm_cc(P.dir)] = P.c;
+            if (to_piece_chart(M, Q, best.F, Y, Yq)) {
+                T->nodes[node].has_sum = 1;
+                T->nodes[node].sum = P.b + tm_sigma(Q->dir) * Yq[tm_rc(Q->dir)] + Q->b;
             }
-            stop(tr, Q->trace, TM_STOP_MEET, node);
+        }
+        if (best.meet) {
+            stop(tr, T->pieces[best.q].trace, TM_STOP_MEET, node);
             T->meets++;
         } else {
             T->t_junctions++;

@@ -185,6 +185,33 @@ sq_status sq_cut_graph_build_low_genus(const sq_mesh *m, const uint8_t *cone,
                                        const sq_cut_options *opt, sq_cut_graph *out,
                                        sq_cut_stats *stats, sq_error *err);
 
+/* Seam rotations (docs/holonomy.md). turn: a connection in quarter turns
+ * per halfedge (sq_cone_connection.h) for the cones `valence`.
+ *
+ * sq_cut_graph_rotation_mismatch: how far every map built on G (the seed's
+ * domain, right-angled corners) is from the connection's rotations: norm =
+ * sum over the non-tree branches of a spanning tree of the branch graph of
+ * the Z4 distance from 0 of the rotation each must gain; wrong_loops = side
+ * pairs whose boundary loop rotates differently. 0 and 0: the maps have
+ * the connection's rotations around every loop.
+ *
+ * sq_cut_graph_steer: reroutes branches of G across cones (same corners,
+ * same pattern) until the mismatch is 0 or no reroute lowers it; G is
+ * replaced by the steered graph (checked by sq_cut_graph_check). Genus < 2
+ * and patterns with straight corners are left unchanged. stats optional. */
+typedef struct sq_cut_steer_stats {
+    uint32_t norm_before, norm_after;
+    uint32_t wrong_loops_before, wrong_loops_after;
+    uint32_t reroutes;
+    double length_before, length_after; /* Euclidean length of the cut */
+} sq_cut_steer_stats;
+
+sq_status sq_cut_graph_rotation_mismatch(const sq_mesh *m, const sq_cut_graph *G,
+                                         const double *turn, uint32_t *norm, uint32_t *wrong_loops,
+                                         sq_error *err);
+sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const double *turn,
+                             sq_cut_graph *G, sq_cut_steer_stats *stats, sq_error *err);
+
 /* Side correspondence between the cut graph and the domain Q.
  *
  * Orientation: G->pattern is read with the cut disk on the LEFT

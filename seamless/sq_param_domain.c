@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "sq_clock.h"
+#include "sq_cone_connection.h"
 #include "sq_param_steps.h"
 
 /* ---- step 1-3: cut graph, domain, Omega ------------------------------ */
@@ -481,6 +482,29 @@ sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *
         if (err) err->code = st;
     }
     if (st) goto done;
+    {
+        /* the handles' rotations of a smooth cross field with these cones
+         * (docs/holonomy.md): the cut graph moved across cones until every
+         * map built on it has them */
+        double *turn = malloc((size_t)m->nh * sizeof *turn);
+        sq_cut_steer_stats ss;
+        memset(&ss, 0, sizeof ss);
+        if (!turn) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (rotations)");
+        if (st == SQ_OK) st = sq_cone_connection(m, valence, turn, NULL, err);
+        /* a given graph was steered on the unrefined mesh: measured only */
+        if (st == SQ_OK && !c->given_G) st = sq_cut_graph_steer(m, valence, turn, &c->G, &ss, err);
+        else if (st == SQ_OK) {
+            st = sq_cut_graph_rotation_mismatch(m, &c->G, turn, &ss.norm_after, &ss.wrong_loops_after, err);
+            ss.norm_before = ss.norm_after;
+        }
+        free(turn);
+        if (st) goto done;
+        if (st_out) {
+            st_out->rot_mismatch_before = ss.norm_before;
+            st_out->rot_mismatch_after = ss.norm_after;
+            st_out->rot_reroutes = ss.reroutes;
+        }
+    }
     st = sq_pattern_reversed(&c->G.pattern, &c->pcw, err);
     if (st) goto done;
     double t1 = sq_now();

@@ -58,7 +58,6 @@ for name in $models; do
   mesh=$data/$name.obj
   cones=$data/${name}_Th_hat
   seed=1
-  [ "$name" = block ] && seed=15
   if ! "$bin" param "$mesh" --cones "$cones" -o "$tmp/$name.igm1.obj" --seed $seed --json --quiet \
       >"$tmp/$name.param.json" 2>"$tmp/$name.param.err"; then
     bad "$name: param failed: $(tail -1 "$tmp/$name.param.err")"

@@ -404,7 +404,7 @@ static int long_tests(void)
 static void test_param_models(void **state)
 {
     (void)state;
-    static const char *names[] = {"cup", "knot1", "holes3"};
+    static const char *names[] = {"cup", "knot1", "block"};
     if (long_tests())
         for (size_t i = 0; i < NPARAM_ALL; i++) param_case(PARAM_ALL[i], 0);
     else

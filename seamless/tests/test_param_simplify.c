@@ -1,5 +1,5 @@
 /* seamquad: tests of sq_param_simplify (seamless/sq_param_simplify.c) on
- * real maps: mpz/eight (the overlay's map, step 7') and mpz/sculpt (the
+ * real maps: mpz/eight (the overlay's map, step 7') and mpz/genus3 (the
  * cells' map, steps 6-7), each built with SQ_SIMPLIFY_OFF and with the
  * default (simplified). The simplified map must:
  *  - pass sq_param_verify (integer grid map) and the referee;
@@ -111,7 +111,7 @@ static void check_model(const char *rel, int want_overlay)
     sq_param_options opt;
     sq_param_options_default(&opt);
     opt.attempts = 4;
-    opt.fallback = SQ_FALLBACK_OFF; /* sculpt: the cells' map (else the fallback's replaces it) */
+    opt.fallback = SQ_FALLBACK_OFF; /* genus3: the cells' map (else the fallback's replaces it) */
     opt.simplify = SQ_SIMPLIFY_OFF;
     if (sq_param_build(&m, val, &opt, &A, &sa, &err)) fail_msg("%s, unsimplified: %s", rel, err.msg);
     opt.simplify = SQ_SIMPLIFY_ON;
@@ -247,17 +247,17 @@ static void test_eight_overlay(void **state)
     check_model("mpz/eight", 1);
 }
 
-static void test_sculpt_cells(void **state)
+static void test_genus3_cells(void **state)
 {
     (void)state;
-    check_model("mpz/sculpt", 0);
+    check_model("mpz/genus3", 0);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_eight_overlay),
-        cmocka_unit_test(test_sculpt_cells),
+        cmocka_unit_test(test_genus3_cells),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
