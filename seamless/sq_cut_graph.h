@@ -197,13 +197,18 @@ sq_status sq_cut_graph_build_low_genus(const sq_mesh *m, const uint8_t *cone,
  *
  * sq_cut_graph_steer: reroutes branches of G across cones (same corners,
  * same pattern) until the mismatch is 0 or no reroute lowers it; G is
- * replaced by the steered graph (checked by sq_cut_graph_check). Genus < 2
- * and patterns with straight corners are left unchanged. stats optional. */
+ * replaced by the steered graph (checked by sq_cut_graph_check), its
+ * corners possibly renumbered (stats->corner_shift) with their straight
+ * marks kept. The domain's corner angles are taken from G->pattern: for
+ * genus 1 (theta graph) the caller marks the corners the domain makes
+ * straight. Genus 0 is left unchanged. stats optional. */
 typedef struct sq_cut_steer_stats {
     uint32_t norm_before, norm_after;
     uint32_t wrong_loops_before, wrong_loops_after;
     uint32_t reroutes;
     double length_before, length_after; /* Euclidean length of the cut */
+    uint32_t corner_shift;  /* the steered word's corner (i + corner_shift) */
+                            /* mod k is the input word's corner i          */
 } sq_cut_steer_stats;
 
 sq_status sq_cut_graph_rotation_mismatch(const sq_mesh *m, const sq_cut_graph *G,

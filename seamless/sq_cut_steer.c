@@ -24,9 +24,10 @@
  * linear system, solved mod 2 and lifted), and each accepted reroute must
  * lower the sum of these values' distances from 0.
  *
- * Genus >= 2 (all corners right angles); genus 0 has no handle, genus 1's
- * theta graph leaves its straight corners to the domain and is not
- * steered. */
+ * Genus >= 1 (genus 0 has no handle). The domain's corner angles are read
+ * from G's pattern: right angles for genus >= 2; for genus 1's theta graph
+ * the caller marks the corners the domain makes straight, and the marks
+ * follow the corners when a reroute renumbers them. */
 #include "sq_cut_graph.h"
 #include "sq_cut_internal.h"
 
@@ -88,8 +89,22 @@ static void mismatch_free(mismatch *M)
 /* The mismatch of G against the connection turn. Returns 0 when the Z4
  * system has no solution (it always has one when turn is a connection
  * with integer rotations; a failure means a bug) or on out of memory. */
+/* A name for the branch of side i that survives renumbering: its lowest
+ * edge (canonical halfedge). */
+static uint32_t branch_id(const sq_mesh *m, const sq_cut_graph *G, uint32_t i)
+{
+    uint32_t id = UINT32_MAX;
+    for (uint32_t n = G->side_off[i]; n < G->side_off[i + 1]; ++n) {
+        const uint32_t h = G->side_he[n], e = h < m->he_twin[h] ? h : m->he_twin[h];
+        if (e < id) id = e;
+    }
+    return id;
+}
+
+/* blocked (nh entries or NULL): branches (by branch_id) that no detour
+ * could move, taken into the spanning tree first */
 static int compute_mismatch(const sq_mesh *m, const sq_cut_graph *G, const double *turn,
-                            mismatch *out)
+                            const uint8_t *blocked, mismatch *out)
 {
     const sq_pattern *P = &G->pattern;
     const uint32_t k = P->k, B = G->side_off[k], np = k / 2;
@@ -124,24 +139,27 @@ static int compute_mismatch(const sq_mesh *m, const sq_cut_graph *G, const doubl
     /* spanning tree of the branch graph (corner classes, branches) */
     sq_pattern_corner_classes(P, cls);
     for (uint32_t i = 0; i < k; ++i) comp[i] = cls[i];
-    /* short branches into the tree first: they are the hardest to move
-     * (a branch of one edge has no inner vertex to leave from) */
+    /* into the tree first: branches no detour could move, then short ones
+     * (a branch of one edge has no inner vertex to leave from); ties by
+     * branch_id, so the tree does not change when a reroute renumbers the
+     * sides */
     uint32_t *order = malloc((size_t)np * sizeof *order);
-    if (!order) goto done;
-    for (uint32_t q = 0; q < np; ++q) order[q] = q;
-    for (uint32_t a = 1; a < np; ++a) /* insertion sort by edge count */
+    uint32_t *bid = malloc((size_t)np * sizeof *bid);
+    if (!order || !bid) {
+        free(order), free(bid);
+        goto done;
+    }
+    for (uint32_t q = 0; q < np; ++q) order[q] = q, bid[q] = branch_id(m, G, out->pair_side[q]);
+    for (uint32_t a = 1; a < np; ++a) /* insertion sort */
         for (uint32_t b = a; b > 0; --b) {
-            const uint32_t x = out->pair_side[order[b - 1]], y = out->pair_side[order[b]];
+            const uint32_t qx = order[b - 1], qy = order[b];
+            const uint32_t x = out->pair_side[qx], y = out->pair_side[qy];
+            const int bx = blocked && blocked[bid[qx]], by = blocked && blocked[bid[qy]];
             const uint32_t lx = G->side_off[x + 1] - G->side_off[x], ly = G->side_off[y + 1] - G->side_off[y];
-            /* ties by a mesh halfedge of the branch: the same tree after a
-             * reroute renumbers the sides */
-            const uint32_t hx = G->side_he[G->side_off[x]], hy = G->side_he[G->side_off[y]];
-            const uint32_t ix = hx < m->he_twin[hx] ? hx : m->he_twin[hx];
-            const uint32_t iy = hy < m->he_twin[hy] ? hy : m->he_twin[hy];
-            if (lx < ly || (lx == ly && ix <= iy)) break;
-            const uint32_t tmp = order[b - 1];
-            order[b - 1] = order[b], order[b] = tmp;
+            if (bx > by || (bx == by && (lx < ly || (lx == ly && bid[qx] <= bid[qy])))) break;
+            order[b - 1] = qy, order[b] = qx;
         }
+    free(bid);
     for (uint32_t oq = 0; oq < np; ++oq) {
         const uint32_t q = order[oq];
         const uint32_t i = out->pair_side[q];
@@ -385,11 +403,13 @@ static void ws_recount(steer_ws *w)
         if (w->cutdeg[m->he_vert[h]]) w->near[sq_cut_dest(m, h)]++;
 }
 
-/* G with the segment side_he[na .. nb-1] replaced by the detour (n
- * halfedges); the boundary word and the check redone. */
+/* G with the segment side_he[na .. nb-1] of side s replaced by the detour
+ * (n halfedges); the boundary word and the check redone. The new word may
+ * start elsewhere: its corner (i + *shift) mod k is G's corner i, whose
+ * straight flag it gets. */
 static sq_status apply_detour(const sq_mesh *m, const uint8_t *cone, const sq_cut_graph *G,
-                              uint32_t na, uint32_t nb, const uint32_t *route, uint32_t n,
-                              sq_cut_graph *out, sq_error *err)
+                              uint32_t s, uint32_t na, uint32_t nb, const uint32_t *route, uint32_t n,
+                              sq_cut_graph *out, uint32_t *shift, sq_error *err)
 {
     sq_cut_graph_init(out);
     out->he_cut = malloc(m->nh);
@@ -413,7 +433,20 @@ static sq_status apply_detour(const sq_mesh *m, const uint8_t *cone, const sq_cu
         out->rank = sq_pattern_rank(&out->pattern);
         st = sq_cut_graph_check(m, cone, out, err);
     }
-    return st;
+    const uint32_t k = G->pattern.k;
+    if (st == SQ_OK && out->pattern.k != k)
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: a detour changed the number of sides");
+    if (st) return st;
+    /* a side the detour left alone: its first halfedge names it in both */
+    uint32_t i = 0;
+    while (i == s || i == G->pattern.partner[s]) ++i;
+    const uint32_t h = G->side_he[G->side_off[i]];
+    uint32_t j = 0;
+    while (j < k && out->side_he[out->side_off[j]] != h) ++j;
+    if (j == k) return sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: a side moved by a detour it did not touch");
+    *shift = (j + k - i) % k;
+    for (uint32_t c = 0; c < k; ++c) out->pattern.straight[(c + *shift) % k] = G->pattern.straight[c];
+    return SQ_OK;
 }
 
 #define NEAR_CONES 16
@@ -444,9 +477,7 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     memset(&S, 0, sizeof S);
     S.length_before = S.length_after = G->length;
     if (stats) *stats = S;
-    if (G->genus < 2) return SQ_OK;
-    for (uint32_t i = 0; i < G->pattern.k; ++i)
-        if (G->pattern.straight[i]) return SQ_OK;
+    if (G->genus < 1) return SQ_OK;
     sq_status st = SQ_OK;
     steer_ws w;
     memset(&w, 0, sizeof w);
@@ -472,9 +503,13 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     w.fstack = malloc((size_t)m->nf * sizeof *w.fstack);
     w.fmark = calloc(m->nf, sizeof *w.fmark);
     route_cand cand[4];
+    uint8_t *blocked = calloc(m->nh, 1);
+    uint8_t *he_cut0 = malloc(m->nh), *straight0 = malloc(G->pattern.k + 1);
+    if (he_cut0) memcpy(he_cut0, G->he_cut, m->nh);
+    if (straight0) memcpy(straight0, G->pattern.straight, G->pattern.k);
     mismatch M;
     memset(&M, 0, sizeof M);
-    if (!cone || !w.cut || !w.cutdeg || !w.near || !fok || !near_cone || !w.route ||
+    if (!cone || !blocked || !he_cut0 || !straight0 || !w.cut || !w.cutdeg || !w.near || !fok || !near_cone || !w.route ||
         !w.mark || !w.fstack || !w.fmark || !sq_cut_heap_init(&w.heap, m->nv + 16)) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (steer)");
         goto done;
@@ -483,17 +518,17 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     for (uint32_t h = 0; h < m->nh; ++h) mean += sq_cut_he_length(m, h);
     w.penalty = PENALTY_EDGES * mean / m->nh;
     for (uint32_t v = 0; v < m->nv; ++v) cone[v] = valence[v] != 4;
-    if (!compute_mismatch(m, G, turn, &M)) {
+    if (!compute_mismatch(m, G, turn, blocked, &M)) {
         st = sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: the rotation mismatch has no Z4 solution");
         goto done;
     }
     S.norm_before = M.norm;
     S.wrong_loops_before = M.wrong_loops;
-    for (uint32_t round = 0; M.norm > 0 && round < 4 * G->genus; ++round) {
+    for (uint32_t round = 0; M.norm > 0 && round < 6 * G->genus; ++round) {
         /* every non-tree branch that must change, on both of its sides;
          * per side the shortest detour that lowers the mismatch; over all
          * sides the lowest mismatch, then the shortest detour */
-        uint32_t best_norm = M.norm;
+        uint32_t best_norm = M.norm, best_shift = 0;
         double best_len = INFINITY;
         sq_cut_graph best;
         sq_cut_graph_init(&best);
@@ -574,19 +609,20 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
                         const uint32_t n = build_detour(&w, A, Bf, cand[x].ab, &na, &nb);
                         sq_cut_graph cg;
                         sq_error e2;
-                        if (!n || apply_detour(m, cone, G, na, nb, w.route, n, &cg, &e2) != SQ_OK) {
+                        uint32_t d = 0;
+                        if (!n || apply_detour(m, cone, G, s, na, nb, w.route, n, &cg, &d, &e2) != SQ_OK) {
                             if (n) sq_cut_graph_free(&cg);
                             continue;
                         }
                         mismatch M2;
-                        if (!compute_mismatch(m, &cg, turn, &M2)) {
+                        if (!compute_mismatch(m, &cg, turn, blocked, &M2)) {
                             sq_cut_graph_free(&cg);
                             continue;
                         }
                         const uint32_t nn = M2.norm;
                         mismatch_free(&M2);
                         if (nn < M.norm && (nn < best_norm || (nn == best_norm && cand[x].len < best_len))) {
-                            best_norm = nn, best_len = cand[x].len;
+                            best_norm = nn, best_len = cand[x].len, best_shift = d;
                             sq_cut_graph_free(&best);
                             best = cg;
                         } else
@@ -597,13 +633,27 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
         }
         if (best_norm >= M.norm) {
             sq_cut_graph_free(&best);
-            break;
+            /* no detour moves these branches: put them into the tree, so
+             * that other branches carry the change, while that is new */
+            uint32_t added = 0;
+            for (uint32_t t = 0; t < M.nfree; ++t) {
+                const uint32_t id = branch_id(m, G, M.pair_side[M.free_pair[t]]);
+                if (M.y[t] && !blocked[id]) blocked[id] = 1, ++added;
+            }
+            if (!added) break;
+            mismatch_free(&M);
+            if (!compute_mismatch(m, G, turn, blocked, &M)) {
+                st = sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: the rotation mismatch has no Z4 solution");
+                goto done;
+            }
+            continue;
         }
         sq_cut_graph_free(G);
         *G = best;
         S.reroutes++;
+        S.corner_shift = (S.corner_shift + best_shift) % G->pattern.k;
         mismatch_free(&M);
-        if (!compute_mismatch(m, G, turn, &M)) {
+        if (!compute_mismatch(m, G, turn, blocked, &M)) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: the rotation mismatch has no Z4 solution");
             goto done;
         }
@@ -613,13 +663,34 @@ nomem:
     st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (steer)");
     goto done;
 finish:
+    mismatch_free(&M);
+    if (!compute_mismatch(m, G, turn, NULL, &M)) { /* the canonical tree's norm */
+        st = sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: the rotation mismatch has no Z4 solution");
+        goto done;
+    }
+    if (M.norm > S.norm_before) {
+        /* the detours' trees disagreed with the canonical one: worse than
+         * the input by its measure, so the input is kept */
+        memcpy(G->he_cut, he_cut0, m->nh);
+        G->length = S.length_before;
+        st = sq_cut_boundary_word(m, G, err);
+        if (st) goto done;
+        G->rank = sq_pattern_rank(&G->pattern);
+        memcpy(G->pattern.straight, straight0, G->pattern.k);
+        S.reroutes = 0, S.corner_shift = 0;
+        mismatch_free(&M);
+        if (!compute_mismatch(m, G, turn, NULL, &M)) {
+            st = sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: the rotation mismatch has no Z4 solution");
+            goto done;
+        }
+    }
     S.norm_after = M.norm;
     S.wrong_loops_after = M.wrong_loops;
     S.length_after = G->length;
     if (stats) *stats = S;
 done:
     mismatch_free(&M);
-    free(cone), free(w.cut), free(w.cutdeg), free(w.near), free(near_cone);
+    free(cone), free(blocked), free(he_cut0), free(straight0), free(w.cut), free(w.cutdeg), free(w.near), free(near_cone);
     for (int f = 0; f < 3; ++f) free(F[f].dist), free(F[f].par), free(F[f].src);
     free(w.route), free(w.mark), free(w.fstack), free(w.fmark);
     sq_cut_heap_free(&w.heap);
@@ -631,7 +702,7 @@ sq_status sq_cut_graph_rotation_mismatch(const sq_mesh *m, const sq_cut_graph *G
                                          sq_error *err)
 {
     mismatch M;
-    if (!compute_mismatch(m, G, turn, &M))
+    if (!compute_mismatch(m, G, turn, NULL, &M))
         return sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: the rotation mismatch has no Z4 solution");
     if (norm) *norm = M.norm;
     if (wrong_loops) *wrong_loops = M.wrong_loops;

@@ -434,6 +434,45 @@ static sq_status align_genus1(ctx *c, const int32_t *val, uint32_t nc, const sq_
     return SQ_OK;
 }
 
+/* The handles' rotations of a smooth cross field with these cones
+ * (docs/holonomy.md): c->G moved across cones until every map built on it
+ * has them. A graph given on a refined mesh was steered on the unrefined
+ * one: measured only. Genus 1: after the domain and its alignment, whose
+ * straight corners (Q corner j = G corner (2k - j - r) mod k) decide the
+ * rotations; c->r follows the renumbered corners. */
+static sq_status steer_cut(ctx *c, const int32_t *valence, sq_param_stats *st_out)
+{
+    const sq_mesh *m = c->m;
+    sq_error *err = c->err;
+    double *turn = malloc((size_t)m->nh * sizeof *turn);
+    sq_cut_steer_stats ss;
+    memset(&ss, 0, sizeof ss);
+    sq_status st = turn ? SQ_OK : sq_error_set(err, SQ_ERR_NOMEM, "out of memory (rotations)");
+    if (st == SQ_OK) st = sq_cone_connection(m, valence, turn, NULL, err);
+    const uint32_t k = c->G.pattern.k;
+    if (st == SQ_OK && c->G.genus == 1) {
+        if (!c->D || c->D->pattern.k != k) {
+            free(turn);
+            return sq_error_set(err, SQ_ERR_INTERNAL, "rotations: genus 1 needs the aligned domain");
+        }
+        for (uint32_t j = 0; j < k; ++j) c->G.pattern.straight[(2 * k - j - c->r) % k] = c->D->pattern.straight[j];
+    }
+    if (st == SQ_OK && !c->given_G) st = sq_cut_graph_steer(m, valence, turn, &c->G, &ss, err);
+    else if (st == SQ_OK) {
+        st = sq_cut_graph_rotation_mismatch(m, &c->G, turn, &ss.norm_after, &ss.wrong_loops_after, err);
+        ss.norm_before = ss.norm_after;
+    }
+    free(turn);
+    if (st) return st;
+    c->r = (c->r + k - ss.corner_shift % k) % k;
+    if (st_out) {
+        st_out->rot_mismatch_before = ss.norm_before;
+        st_out->rot_mismatch_after = ss.norm_after;
+        st_out->rot_reroutes = ss.reroutes;
+    }
+    return SQ_OK;
+}
+
 /* ---- steps 1-3 ------------------------------------------------------- */
 
 /* Steps 1-3: the cut graph c->G (c->given_G where set), the domain Q c->D
@@ -482,29 +521,8 @@ sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *
         if (err) err->code = st;
     }
     if (st) goto done;
-    {
-        /* the handles' rotations of a smooth cross field with these cones
-         * (docs/holonomy.md): the cut graph moved across cones until every
-         * map built on it has them */
-        double *turn = malloc((size_t)m->nh * sizeof *turn);
-        sq_cut_steer_stats ss;
-        memset(&ss, 0, sizeof ss);
-        if (!turn) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (rotations)");
-        if (st == SQ_OK) st = sq_cone_connection(m, valence, turn, NULL, err);
-        /* a given graph was steered on the unrefined mesh: measured only */
-        if (st == SQ_OK && !c->given_G) st = sq_cut_graph_steer(m, valence, turn, &c->G, &ss, err);
-        else if (st == SQ_OK) {
-            st = sq_cut_graph_rotation_mismatch(m, &c->G, turn, &ss.norm_after, &ss.wrong_loops_after, err);
-            ss.norm_before = ss.norm_after;
-        }
-        free(turn);
-        if (st) goto done;
-        if (st_out) {
-            st_out->rot_mismatch_before = ss.norm_before;
-            st_out->rot_mismatch_after = ss.norm_after;
-            st_out->rot_reroutes = ss.reroutes;
-        }
-    }
+    if (genus >= 2) st = steer_cut(c, valence, st_out);
+    if (st) goto done;
     st = sq_pattern_reversed(&c->G.pattern, &c->pcw, err);
     if (st) goto done;
     double t1 = sq_now();
@@ -544,6 +562,7 @@ sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *
     st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, err);
     if (st == SQ_OK && c->step_vertex && genus == 1) st = align_genus1(c, val, nc, &dopt);
     else if (st == SQ_OK && c->step_vertex) st = align_corners(c, val, nc, &dopt);
+    if (st == SQ_OK && genus == 1 && nc > 0) st = steer_cut(c, valence, st_out);
     if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     double t2 = sq_now();
