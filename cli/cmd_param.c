@@ -388,7 +388,10 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
            : s->surface_tree ? "guided (seed 9.2), cone tree from the surface (seed 9.4)"
                              : "guided (seed 9.2), cone tree from the domain");
     printf("cut graph      %u edges\n", s->cut_edges);
-    if (s->genus >= 1)
+    if (s->genus >= 1 && s->rot_mismatch_after == UINT32_MAX)
+        printf("rotations      not compared with a smooth cross field's (the mismatch could not "
+               "be computed)\n");
+    else if (s->genus >= 1)
         printf("rotations      %s (mismatch with the smooth field's %u before steering, %u after; %u "
                "branches rerouted)\n",
                s->rot_mismatch_after ? "differ from a smooth cross field's around some handle"

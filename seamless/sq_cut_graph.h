@@ -201,7 +201,9 @@ sq_status sq_cut_graph_build_low_genus(const sq_mesh *m, const uint8_t *cone,
  * corners possibly renumbered (stats->corner_shift) with their straight
  * marks kept. The domain's corner angles are taken from G->pattern: for
  * genus 1 (theta graph) the caller marks the corners the domain makes
- * straight. Genus 0 is left unchanged. stats optional. */
+ * straight. Genus 0 is left unchanged; where the mismatch cannot be
+ * computed (corner angles that do not fit the graph, or no memory), G is
+ * left unchanged and both norms are UINT32_MAX. stats optional. */
 typedef struct sq_cut_steer_stats {
     uint32_t norm_before, norm_after;
     uint32_t wrong_loops_before, wrong_loops_after;

@@ -14,11 +14,11 @@
  * cones the cut graph passes on which side. Where the two differ, no map
  * built on this cut graph has the field's rotations.
  *
- * The fix moves branches across cones: a branch b is replaced by a new
- * route between the same two corners, inside the cut disk on the side of
- * one of b's two sides s, passing beyond a cone; the rotation system and
- * the pattern stay the same, the region between s and the new route (and
- * the cones in it) moves to the other side of the branch. The mismatch is
+ * The fix moves branches across cones: a segment of a branch b is
+ * replaced by a detour inside the cut disk, on the side of one of b's two
+ * sides s, around a cone; b keeps its ends, so the rotation system and the
+ * pattern stay the same, and the region between the segment and the
+ * detour (with its cones) moves to the other side of the branch. The mismatch is
  * a homomorphism from the cycles of the cut graph to Z4; with a spanning
  * tree of the branch graph it is one value per non-tree branch (Z4
  * linear system, solved mod 2 and lifted), and each accepted reroute must
@@ -39,9 +39,10 @@
 /* ---- the mismatch ------------------------------------------------------- */
 
 /* GF(2) solve of A x = r (rows n, cols c, row-major bytes); x gets one
- * solution (free variables 0). Returns 0 if inconsistent. */
+ * solution (free variables 0). work: n (c + 1) bytes; pivcol: n entries.
+ * Returns 0 if inconsistent. */
 static int solve_gf2(uint32_t n, uint32_t c, const uint8_t *A, const uint8_t *r, uint8_t *x,
-                     uint8_t *work)
+                     uint8_t *work, uint32_t *pivcol)
 {
     const uint32_t w = c + 1;
     uint8_t *M = work;
@@ -50,7 +51,6 @@ static int solve_gf2(uint32_t n, uint32_t c, const uint8_t *A, const uint8_t *r,
         M[i * w + c] = r[i] & 1u;
     }
     uint32_t row = 0;
-    int32_t pivcol[64];
     for (uint32_t j = 0; j < c && row < n; ++j) {
         uint32_t p = row;
         while (p < n && !M[p * w + j]) ++p;
@@ -62,7 +62,7 @@ static int solve_gf2(uint32_t n, uint32_t c, const uint8_t *A, const uint8_t *r,
         for (uint32_t i = 0; i < n; ++i)
             if (i != row && M[i * w + j])
                 for (uint32_t t = 0; t < w; ++t) M[i * w + t] ^= M[row * w + t];
-        pivcol[row++] = (int32_t)j;
+        pivcol[row++] = j;
     }
     for (uint32_t i = row; i < n; ++i)
         if (M[i * w + c]) return 0;
@@ -115,6 +115,7 @@ static int compute_mismatch(const sq_mesh *m, const sq_cut_graph *G, const doubl
     uint8_t *intree = calloc(np, 1), *rhs = calloc(np + 1, 1), *A = calloc((size_t)np * np, 1);
     uint8_t *x0 = calloc(np + 1, 1), *x1 = calloc(np + 1, 1), *r2 = calloc(np + 1, 1);
     uint8_t *work = malloc((size_t)np * (np + 2));
+    uint32_t *piv = malloc(((size_t)np + 1) * sizeof *piv);
     int32_t *Ai = calloc((size_t)np * np, sizeof *Ai);
     out->pair_side = malloc((size_t)np * sizeof *out->pair_side);
     out->free_pair = malloc((size_t)np * sizeof *out->free_pair);
@@ -193,9 +194,8 @@ static int compute_mismatch(const sq_mesh *m, const sq_cut_graph *G, const doubl
     for (uint32_t q = 0; q < np; ++q)
         for (uint32_t t = 0; t < nfree; ++t)
             A[(size_t)q * nfree + t] = (uint8_t)(((Ai[(size_t)q * np + out->free_pair[t]] % 4) + 4) % 4);
-    if (nfree > 64) goto done;
     /* A y = rhs (mod 4): y = x0 + 2 x1 */
-    if (!solve_gf2(np, nfree, A, rhs, x0, work)) goto done;
+    if (!solve_gf2(np, nfree, A, rhs, x0, work, piv)) goto done;
     for (uint32_t q = 0; q < np; ++q) {
         int s = rhs[q];
         for (uint32_t t = 0; t < nfree; ++t) s -= A[(size_t)q * nfree + t] * x0[t];
@@ -203,7 +203,7 @@ static int compute_mismatch(const sq_mesh *m, const sq_cut_graph *G, const doubl
         assert(!(s & 1));
         r2[q] = (uint8_t)(s / 2);
     }
-    if (!solve_gf2(np, nfree, A, r2, x1, work)) goto done;
+    if (!solve_gf2(np, nfree, A, r2, x1, work, piv)) goto done;
     out->norm = 0;
     for (uint32_t t = 0; t < nfree; ++t) {
         out->y[t] = (uint8_t)((x0[t] + 2 * x1[t]) % 4);
@@ -519,7 +519,10 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     w.penalty = PENALTY_EDGES * mean / m->nh;
     for (uint32_t v = 0; v < m->nv; ++v) cone[v] = valence[v] != 4;
     if (!compute_mismatch(m, G, turn, blocked, &M)) {
-        st = sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: the rotation mismatch has no Z4 solution");
+        /* no Z4 solution (the corner angles given do not fit the graph)
+         * or no memory for it: G is left as it is, the mismatch unknown */
+        S.norm_before = S.norm_after = UINT32_MAX;
+        if (stats) *stats = S;
         goto done;
     }
     S.norm_before = M.norm;

@@ -215,7 +215,8 @@ typedef struct sq_param_stats {
     /* seam rotations (docs/holonomy.md): the cut graph's mismatch with a
      * smooth cross field having these cones, before and after steering
      * (sq_cut_graph_steer; 0: every map on it has the field's rotations
-     * around the handles), and the branches rerouted */
+     * around the handles; UINT32_MAX: not computed), and the branches
+     * rerouted */
     uint32_t rot_mismatch_before, rot_mismatch_after, rot_reroutes;
     uint64_t quads_unpadded, quads_added;   /* the domain Q                   */
     uint32_t tree_edges, tree_segments;     /* cone tree in Q                 */

@@ -459,7 +459,9 @@ static sq_status steer_cut(ctx *c, const int32_t *valence, sq_param_stats *st_ou
     }
     if (st == SQ_OK && !c->given_G) st = sq_cut_graph_steer(m, valence, turn, &c->G, &ss, err);
     else if (st == SQ_OK) {
-        st = sq_cut_graph_rotation_mismatch(m, &c->G, turn, &ss.norm_after, &ss.wrong_loops_after, err);
+        sq_error e2;
+        if (sq_cut_graph_rotation_mismatch(m, &c->G, turn, &ss.norm_after, &ss.wrong_loops_after, &e2))
+            ss.norm_after = UINT32_MAX; /* unknown; the graph is used as it is */
         ss.norm_before = ss.norm_after;
     }
     free(turn);
