@@ -121,7 +121,7 @@ static int compute_mismatch(const sq_mesh *m, const sq_cut_graph *G, const doubl
     out->free_pair = malloc((size_t)np * sizeof *out->free_pair);
     out->y = calloc(np + 1, 1);
     int ok = 0;
-    if (!pre || !cls || !pair_of || !comp || !intree || !rhs || !A || !x0 || !x1 || !r2 || !work ||
+    if (!pre || !cls || !pair_of || !comp || !intree || !rhs || !A || !x0 || !x1 || !r2 || !work || !piv ||
         !Ai || !out->pair_side || !out->free_pair || !out->y)
         goto done;
     /* rotation of the field along the boundary walk: crossings between
@@ -217,7 +217,7 @@ static int compute_mismatch(const sq_mesh *m, const sq_cut_graph *G, const doubl
     ok = 1;
 done:
     free(pre), free(cls), free(pair_of), free(comp), free(intree), free(rhs), free(A);
-    free(x0), free(x1), free(r2), free(work), free(Ai);
+    free(x0), free(x1), free(r2), free(work), free(piv), free(Ai);
     if (!ok) mismatch_free(out);
     return ok;
 }
