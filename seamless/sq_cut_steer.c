@@ -535,14 +535,16 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
         double best_len = INFINITY;
         sq_cut_graph best;
         sq_cut_graph_init(&best);
+        /* G's cut and the counts next to it, once per round (the
+         * candidates below leave w.cut as they found it) */
+        memcpy(w.cut, G->he_cut, m->nh);
+        ws_recount(&w);
         for (uint32_t t = 0; t < M.nfree; ++t) {
             if (!M.y[t]) continue;
             const uint32_t i = M.pair_side[M.free_pair[t]];
             const uint32_t sides[2] = {i, G->pattern.partner[i]};
             for (int si = 0; si < 2; ++si) {
                 const uint32_t s = sides[si], lo = G->side_off[s], hi = G->side_off[s + 1];
-                memcpy(w.cut, G->he_cut, m->nh);
-                ws_recount(&w);
                 if (!side_dijkstra(&w, G, lo, hi, &F[0])) goto nomem;
                 /* the cones nearest to the side first */
                 uint32_t nnear = 0;
