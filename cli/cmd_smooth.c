@@ -25,8 +25,9 @@ static void help(FILE *f)
             "  2. untangle: while some quad is folded (both of its triangulations bend\n"
             "     by more than ~90 degrees), optimize an untangling objective that may\n"
             "     not fold any other quad;\n"
-            "  3. smooth: N outer iterations of Ceres (Levenberg-Marquardt, sparse\n"
-            "     Cholesky) in each vertex's tangent plane, then re-projection. A step\n"
+            "  3. smooth: N outer iterations of Ceres (Levenberg-Marquardt, each step\n"
+            "     by at most 10 conjugate-gradient iterations) in each vertex's tangent\n"
+            "     plane, then re-projection. A step\n"
             "     that would fold a quad or raise the energy is halved and, if that\n"
             "     does not help, rejected (the report says so).\n"
             "\n"
@@ -35,7 +36,8 @@ static void help(FILE *f)
             "  -o, --output OUT   output quad mesh (OBJ); written only on success\n"
             "  --iterations N     outer smoothing iterations (default 10; 0 = only\n"
             "                     project and untangle)\n"
-            "  --solver-iterations N  Ceres iterations per outer iteration (default 20)\n"
+            "  --solver-iterations N  Ceres iterations per outer iteration (default 5;\n"
+            "                     untangling: 20)\n"
             "  --threads N        Ceres threads (default 1)\n"
             "  --json             machine-readable report on stdout\n"
             "  -q, --quiet        no progress on stderr\n"
@@ -209,10 +211,11 @@ int sq_cmd_smooth(int argc, char **argv)
             print_quality_json("after", &stats.after, stats.dist_after_rel);
             printf("  \"untangle_iterations\": %d, \"iterations\": %d, \"solver_iterations\": %ld, "
                    "\"solver_rejected_steps\": %ld, \"fold_rejections\": %ld, \"backtracks\": %d, "
-                   "\"steps_rejected\": %d,\n  \"energy_before\": %.17g, \"energy_after\": %.17g, "
+                   "\"steps_rejected\": %d, \"thorough\": %s,\n  \"energy_before\": %.17g, \"energy_after\": %.17g, "
                    "\"linear_solver\": \"%s\", \"stop_reason\": ",
                    stats.untangle_iterations, stats.iterations, stats.solver_iterations, stats.solver_rejected,
-                   stats.fold_rejections, stats.backtracks, stats.steps_rejected, stats.energy_before,
+                   stats.fold_rejections, stats.backtracks, stats.steps_rejected,
+                   stats.thorough ? "true" : "false", stats.energy_before,
                    stats.energy_after, stats.linear_solver);
             sq_json_string(stdout, stats.stop_reason);
             printf(",\n  \"smooth_s\": %.3f,\n", stats.seconds);
@@ -232,9 +235,10 @@ int sq_cmd_smooth(int argc, char **argv)
         printf("surface    max distance/diagonal: before %.3g, after %.3g\n", stats.dist_before_rel,
                stats.dist_after_rel);
         printf("solver     %d untangle + %d smoothing iterations, %ld Ceres iterations (%s), %ld Ceres steps "
-               "rejected (%ld trial states would fold a quad), %d backtracks, %d steps rejected\n",
+               "rejected (%ld trial states would fold a quad), %d backtracks, %d steps rejected%s\n",
                stats.untangle_iterations, stats.iterations, stats.solver_iterations, stats.linear_solver,
-               stats.solver_rejected, stats.fold_rejections, stats.backtracks, stats.steps_rejected);
+               stats.solver_rejected, stats.fold_rejections, stats.backtracks, stats.steps_rejected,
+               stats.thorough ? " (the first quick step failed: solved as thoroughly as untangling)" : "");
         printf("stop       %s\n", stats.stop_reason);
         printf("energy     %.6g -> %.6g\ntime       %.2f s\n", stats.energy_before, stats.energy_after, total);
         if (st == SQ_OK) printf("output     %s\n", out);

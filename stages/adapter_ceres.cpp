@@ -72,6 +72,7 @@ extern "C" void sq_nlls_options_default(sq_nlls_options *o)
     o->gradient_tolerance = 1e-10;
     o->parameter_tolerance = 1e-8;
     o->num_threads = 1;
+    o->max_linear_iterations = 500;
 }
 
 extern "C" sq_status sq_nlls_solve(const sq_nlls_problem *p, const sq_nlls_options *o,
@@ -103,13 +104,12 @@ extern "C" sq_status sq_nlls_solve(const sq_nlls_problem *p, const sq_nlls_optio
         so.minimizer_type = ceres::TRUST_REGION;
         so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
         // Conjugate gradients on the normal equations (block Jacobi
-        // preconditioner; Ceres' default of at most 500 per step, which
-        // untangling needs): sparse products instead of a Cholesky
-        // factorization per step (smoothing a remeshed bunny's 5K quads:
-        // 3.6 s against 23 s with SPARSE_NORMAL_CHOLESKY on SuiteSparse;
-        // slower on ill-conditioned splits, docs/smooth.md).
+        // preconditioner; the caller bounds the iterations per step):
+        // sparse products instead of a Cholesky factorization per step
+        // (docs/smooth.md, "Cost").
         so.linear_solver_type = ceres::CGNR;
         so.preconditioner_type = ceres::JACOBI;
+        if (o->max_linear_iterations > 0) so.max_linear_solver_iterations = o->max_linear_iterations;
         so.max_num_iterations = o->max_iterations;
         so.function_tolerance = o->function_tolerance;
         so.gradient_tolerance = o->gradient_tolerance;

@@ -60,6 +60,8 @@ typedef struct sq_nlls_options {
     double gradient_tolerance;  /* max-norm of the projected gradient      */
     double parameter_tolerance; /* relative step size                      */
     int num_threads;            /* >= 1; callbacks must be thread-safe if > 1 */
+    int max_linear_iterations;  /* conjugate-gradient iterations per step  */
+                                /* (500: Ceres' default)                   */
 } sq_nlls_options;
 
 typedef struct sq_nlls_summary {

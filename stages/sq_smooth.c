@@ -29,7 +29,10 @@ void sq_smooth_options_default(sq_smooth_options *o)
 {
     memset(o, 0, sizeof *o);
     o->iterations = 10;
-    o->solver_iterations = 20;
+    o->solver_iterations = 5;
+    o->linear_iterations = 10;
+    o->untangle_solver_iterations = 20;
+    o->untangle_linear_iterations = 500;
     o->untangle_iterations = 30;
     o->angle_weight = 1.0;
     o->length_weight = 1.0;
@@ -38,6 +41,7 @@ void sq_smooth_options_default(sq_smooth_options *o)
     o->fold_margin = 0.01;
     o->untangle_target = 1e-3;
     o->function_tolerance = 1e-6;
+    o->stop_tolerance = 1e-4;
     o->gradient_tolerance = 1e-10;
     o->parameter_tolerance = 1e-8;
     o->num_threads = 1;
@@ -58,6 +62,7 @@ typedef struct smoother {
     double *frame, *h, *ref_normal, *threshold, *x, *cand, *margin, *target, *ideal_log;
     uint32_t *cand_tri, *con_quad, *res_off, *res_param, *res_dim;
     unsigned char *untangle;
+    int thorough; /* smoothing solves as thorough as untangling's from now on */
     sq_smooth_ctx ctx;
 } smoother;
 
@@ -223,7 +228,9 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
                          sq_smooth_feasible_cb, &s->ctx};
     sq_nlls_options no;
     sq_nlls_options_default(&no);
-    no.max_iterations = o->solver_iterations;
+    int quick = smoothing && !s->thorough;
+    no.max_iterations = quick ? o->solver_iterations : o->untangle_solver_iterations;
+    no.max_linear_iterations = quick ? o->linear_iterations : o->untangle_linear_iterations;
     no.function_tolerance = o->function_tolerance;
     no.gradient_tolerance = o->gradient_tolerance;
     no.parameter_tolerance = o->parameter_tolerance;
@@ -301,8 +308,9 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     for (size_t i = 0; i < 4 * (size_t)nq; i++)
         if (quads[i] >= nv)
             return sq_error_set(err, SQ_ERR_INDEX, "smooth: quad %zu uses vertex %u of %u", i / 4, quads[i], nv);
-    if (opt->iterations < 0 || opt->solver_iterations < 1 || opt->untangle_iterations < 0)
-        return sq_error_set(err, SQ_ERR_ARGUMENT, "smooth: iteration counts must be >= 0 (solver >= 1)");
+    if (opt->iterations < 0 || opt->untangle_iterations < 0 || opt->solver_iterations < 1 ||
+        opt->untangle_solver_iterations < 1 || opt->linear_iterations < 1 || opt->untangle_linear_iterations < 1)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "smooth: iteration counts must be >= 0 (solver and linear >= 1)");
 
     smoother s;
     memset(&s, 0, sizeof s);
@@ -426,6 +434,14 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
             st = err ? err->code : SQ_ERR_SOLVER;
             goto done;
         }
+        if (r != 1 && !s.thorough && stats->iterations == 0) {
+            /* the short, inexact solves found no acceptable first step
+             * (slivers: ill-conditioned normal equations): solve as
+             * thoroughly as untangling does from here on */
+            s.thorough = 1, stats->thorough = 1;
+            it--;
+            continue;
+        }
         if (r == 2) {
             snprintf(stats->stop_reason, sizeof stats->stop_reason, "converged: the solver found no better step");
             break;
@@ -449,11 +465,11 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         stats->iterations++;
         double e = sq_smooth_energy(&s.ctx, pos);
         if (opt->progress) opt->progress(opt->progress_user, "smooth", stats->iterations, e, 0);
-        int small = energy - e <= opt->function_tolerance * energy;
+        int small = energy - e <= opt->stop_tolerance * energy;
         energy = e;
         if (small) {
             snprintf(stats->stop_reason, sizeof stats->stop_reason,
-                     "converged: relative energy decrease below %g", opt->function_tolerance);
+                     "converged: relative energy decrease below %g", opt->stop_tolerance);
             break;
         }
     }

@@ -40,7 +40,10 @@ void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *qua
 
 typedef struct sq_smooth_options {
     int iterations;          /* outer iterations: optimize, re-project (10)       */
-    int solver_iterations;   /* Levenberg-Marquardt iterations per outer one (20) */
+    int solver_iterations;   /* Levenberg-Marquardt iterations per outer one (5)  */
+    int linear_iterations;   /* conjugate-gradient iterations per LM step (10)    */
+    int untangle_solver_iterations; /* the same two while untangling (20, 500)    */
+    int untangle_linear_iterations;
     int untangle_iterations; /* outer iterations allowed for untangling (30)      */
     double angle_weight;     /* weight of the corner-angle residuals (1)          */
     double length_weight;    /* weight of the edge-length residuals (1)           */
@@ -50,6 +53,8 @@ typedef struct sq_smooth_options {
                              /* its margin after untangling) (0.01)               */
     double untangle_target;  /* untangle until every fold margin >= this (1e-3)   */
     double function_tolerance, gradient_tolerance, parameter_tolerance; /* Ceres  */
+    double stop_tolerance;   /* stop when an outer iteration lowers the energy by */
+                             /* less than this, relative (1e-4)                   */
     int num_threads;         /* Ceres threads (1)                                 */
     /* optional progress report (the library never prints) */
     void (*progress)(void *user, const char *phase, int iteration, double energy, uint32_t folded);
@@ -70,6 +75,8 @@ typedef struct sq_smooth_stats {
     int backtracks;              /* halvings of a step after re-projection      */
     int steps_rejected;          /* outer steps rejected whole (fold / quality) */
     int retries;                 /* damped retries after a rejected step        */
+    int thorough;                /* 1: the first quick step failed, all steps    */
+                                 /* were solved with untangling's bounds         */
     double energy_before, energy_after; /* smoothing energy (sum of squares)   */
     double seconds;
     char linear_solver[48];
