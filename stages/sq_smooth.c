@@ -467,6 +467,12 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         if (opt->progress) opt->progress(opt->progress_user, "smooth", stats->iterations, e, 0);
         int small = energy - e <= opt->stop_tolerance * energy;
         energy = e;
+        if (small && !s.thorough && e > 0.5 * stats->energy_before) {
+            /* the quick steps stalled before removing half the energy
+             * (block's skewed quads): go on with thorough solves */
+            s.thorough = 1, stats->thorough = 1;
+            continue;
+        }
         if (small) {
             snprintf(stats->stop_reason, sizeof stats->stop_reason,
                      "converged: relative energy decrease below %g", opt->stop_tolerance);
