@@ -30,37 +30,24 @@
 #include "sq_pattern.h"
 #include "sq_test_cut.h"
 #include "sq_test_mesh.h"
+#include "sq_test_potentials.h"
 #include "sq_test_random.h"
 
-/* Every closed loop of faces has an integer total: with a face tree and
- * potentials phi (phi[g] = phi[f] + turn[h] along tree edges), every edge
- * must satisfy phi[f] + turn[h] - phi[g] in Z. Returns the largest
- * distance from an integer. */
+/* Every closed loop of faces has an integer total turn: the largest
+ * distance from an integer of phi[f] + turn[h] - phi[g] over the
+ * halfedges, phi the face-tree potentials (sq_test_potentials.h). */
 static double loop_integrality(const sq_mesh *m, const double *turn)
 {
     double *phi = malloc((size_t)m->nf * sizeof *phi);
-    uint32_t *queue = malloc((size_t)m->nf * sizeof *queue);
-    uint8_t *seen = calloc(m->nf, 1);
-    assert_true(phi && queue && seen);
-    uint32_t qh = 0, qt = 0;
-    queue[qt++] = 0, seen[0] = 1, phi[0] = 0.0;
-    while (qh < qt) {
-        const uint32_t f = queue[qh++], h0 = m->f_he[f];
-        uint32_t h = h0;
-        do {
-            const uint32_t g = m->he_face[m->he_twin[h]];
-            if (!seen[g]) seen[g] = 1, phi[g] = phi[f] + turn[h], queue[qt++] = g;
-            h = m->he_next[h];
-        } while (h != h0);
-    }
-    assert_int_equal(qt, m->nf);
+    assert_non_null(phi);
+    sq_test_face_potentials(m, turn, phi);
     double worst = 0.0;
     for (uint32_t h = 0; h < m->nh; ++h) {
         const double d = phi[m->he_face[h]] + turn[h] - phi[m->he_face[m->he_twin[h]]];
         const double r = fabs(d - nearbyint(d));
         if (r > worst) worst = r;
     }
-    free(phi), free(queue), free(seen);
+    free(phi);
     return worst;
 }
 

@@ -29,6 +29,7 @@
 #include "sq_mesh.h"
 #include "sq_param.h"
 #include "sq_remesh.h"
+#include "sq_test_potentials.h"
 
 static const char *shared_dir(void)
 {
@@ -42,29 +43,18 @@ static const char *shared_dir(void)
 static uint32_t rotation_disagreements(const sq_map *M, const double *turn)
 {
     const sq_mesh *m = &M->mesh;
-    double *phi = malloc((size_t)m->nf * sizeof *phi);
-    uint32_t *queue = malloc((size_t)m->nf * sizeof *queue);
-    uint8_t *seen = calloc(m->nf, 1);
-    assert_true(phi && queue && seen);
-    uint32_t qh = 0, qt = 0;
-    queue[qt++] = 0, seen[0] = 1, phi[0] = 0.0;
-    while (qh < qt) {
-        const uint32_t f = queue[qh++], h0 = m->f_he[f];
-        uint32_t h = h0;
-        do {
-            const uint32_t g = m->he_face[m->he_twin[h]];
-            if (!seen[g]) seen[g] = 1, phi[g] = phi[f] + turn[h] - (double)M->he_rot[h], queue[qt++] = g;
-            h = m->he_next[h];
-        } while (h != h0);
-    }
+    double *phi = malloc((size_t)m->nf * sizeof *phi), *diff = malloc((size_t)m->nh * sizeof *diff);
+    assert_true(phi && diff);
+    for (uint32_t h = 0; h < m->nh; ++h) diff[h] = turn[h] - (double)M->he_rot[h];
+    sq_test_face_potentials(m, diff, phi);
     uint32_t bad = 0;
     for (uint32_t h = 0; h < m->nh; ++h) {
         if (h > m->he_twin[h]) continue;
-        double d = (phi[m->he_face[h]] + turn[h] - (double)M->he_rot[h] - phi[m->he_face[m->he_twin[h]]]) / 4.0;
+        double d = (phi[m->he_face[h]] + diff[h] - phi[m->he_face[m->he_twin[h]]]) / 4.0;
         d -= nearbyint(d);
         if (fabs(d) > 1e-6) ++bad;
     }
-    free(phi), free(queue), free(seen);
+    free(phi), free(diff);
     return bad;
 }
 
