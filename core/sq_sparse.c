@@ -13,8 +13,9 @@
  * the same libcholmod.so, and we leave CHOLMOD's automatic choice between
  * simplicial and supernodal factorization on (CHOLMOD_AUTO: supernodal when
  * flops / nnz(L) >= 40, which holds for mesh Laplacians of a few thousand
- * vertices and more) for systems of 60,000 unknowns and more, and take the
- * simplicial code below that (SPD_SIMPLICIAL_BELOW). So in practice we use
+ * vertices and more) for systems of 60,000 unknowns and more (200,000 for
+ * the optimizer's, SPD_AUTO_SIMPLICIAL_BELOW), and take the simplicial
+ * code below that (SPD_SIMPLICIAL_BELOW). So in practice we use
  * the supernodal (GPL) code for large meshes and the simplicial (LGPL) code
  * for small ones.
  *
@@ -150,6 +151,17 @@ static sq_status cholmod_check(const char *who, const char *step, int ok,
  * with every system simplicial, elk's 94,000-unknown layouts lost it
  * again: 2.98 s). */
 #define SPD_SIMPLICIAL_BELOW 60000u
+
+/* The optimizer's Newton systems (sq_spd_factor_auto), refactored every
+ * iteration, take the simplicial code below this many unknowns: Debian's
+ * supernodal code opens OpenMP regions with a compiled-in thread count (4,
+ * whatever OMP_NUM_THREADS says), and on a 2-core host 30-45% of the
+ * optimizer's samples were then in the kernel (futex, page faults) and
+ * libgomp. Same iterates either way; wall time, best of 3: bunny's param
+ * map (80K unknowns, 20 iterations) 10.2 -> 6.9 s, mpz/elk's published
+ * map 1.01 -> 0.66 s, fertility_tri's integer-grid map at 1K quads (42K
+ * unknowns) 4.12 -> 4.32 s. */
+#define SPD_AUTO_SIMPLICIAL_BELOW 200000u
 
 static void set_cholmod_options(cholmod_common *c)
 {
@@ -305,7 +317,7 @@ static sq_status factor_x(const char *who, uint32_t n, size_t nnz, const uint32_
     }
     set_cholmod_options(&f->common);
     cholmod_common *c = &f->common;
-    if (sx * n < SPD_SIMPLICIAL_BELOW && !auto_super) c->supernodal = CHOLMOD_SIMPLICIAL;
+    if (sx * n < (auto_super ? SPD_AUTO_SIMPLICIAL_BELOW : SPD_SIMPLICIAL_BELOW)) c->supernodal = CHOLMOD_SIMPLICIAL;
 
     cholmod_sparse *a = NULL;
     double *diag = calloc(n, sizeof *diag);

@@ -21,13 +21,11 @@ typedef struct sq_lu sq_lu;     /* LU factorization (UMFPACK)         */
  * both: entries with row < col are ignored (the lower triangle is used). */
 sq_status sq_spd_factor(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
                         const double *vals, sq_spd **out, sq_error *err);
-/* The same, with CHOLMOD's choice between its simplicial and supernodal
- * code (flops per entry of the factor) at every size, where sq_spd_factor
- * takes the simplicial code below 60,000 unknowns (sq_sparse.c). For a
- * matrix refactored many times (sq_spd_refactor) with more fill than a
- * Laplacian's: the optimizer's Newton systems (2x2 blocks per vertex;
- * fertility_tri's integer-grid map at 1K quads, 42K unknowns, 10 steps:
- * 5.8 s simplicial, 3.3 to 4.4 s with the choice). */
+/* The same for a matrix refactored many times (sq_spd_refactor) with more
+ * fill than a Laplacian's: the optimizer's Newton systems (2x2 blocks per
+ * vertex). The simplicial code below 200,000 unknowns (sq_spd_factor:
+ * 60,000), CHOLMOD's choice between simplicial and supernodal (flops per
+ * entry of the factor) above; sq_sparse.c gives the measurements. */
 sq_status sq_spd_factor_auto(uint32_t n, size_t nnz, const uint32_t *rows, const uint32_t *cols,
                              const double *vals, sq_spd **out, sq_error *err);
 /* Hermitian positive definite complex matrix of size n: vals holds two

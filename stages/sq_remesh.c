@@ -23,6 +23,7 @@
 
 #include "sq_clock.h"
 #include "sq_cgal_adapter.h"
+#include "sq_edge_hash.h"
 #include "sq_cones.h"
 
 /* The share of the whole run each stage is given in the progress report
@@ -107,11 +108,23 @@ static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_e
 }
 
 /* The quads' intersecting triangle pairs, each quad split along its
- * shorter diagonal (as the referee splits them). */
+ * shorter diagonal (as the referee splits them), or along the other where
+ * the shorter one is already an edge of the quads or another quad's
+ * diagonal: two quads that share two opposite corners (beside a cone of
+ * high valence: mpz/helmet's) would otherwise give one edge four
+ * triangles, which the test cannot take. */
 static sq_status quads_self_intersections(const sq_quad_mesh *Q, uint64_t *pairs, sq_error *err)
 {
     uint32_t *tri = malloc(6 * ((size_t)Q->nq + 1) * sizeof *tri);
-    if (!tri) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
+    sq_edge_hash H;
+    if (!tri || sq_edge_hash_init(&H, 4 * (size_t)Q->nq) != 0) { /* edges, both diagonals */
+        free(tri);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
+    }
+    for (size_t i = 0; i < 4 * (size_t)Q->nq; i++) {
+        const uint32_t a = Q->quad[i], b = Q->quad[i % 4 == 3 ? i - 3 : i + 1];
+        H.val[sq_edge_hash_slot(&H, a < b ? a : b, a < b ? b : a)] = 1;
+    }
     for (uint32_t q = 0; q < Q->nq; q++) {
         const uint32_t *c = Q->quad + 4 * (size_t)q;
         double d02 = 0, d13 = 0;
@@ -121,10 +134,19 @@ static sq_status quads_self_intersections(const sq_quad_mesh *Q, uint64_t *pairs
             d02 += a * a, d13 += b * b;
         }
         int k = d02 <= d13 ? 0 : 1; /* the diagonal from corner k to k + 2 */
+        size_t slot[2];
+        for (int j = 0; j < 2; j++) {
+            const uint32_t a = c[j], b = c[j + 2];
+            slot[j] = sq_edge_hash_slot(&H, a < b ? a : b, a < b ? b : a);
+        }
+        /* both taken: the shorter, and the test names the triangle */
+        if (H.val[slot[k]] != SQ_NONE && H.val[slot[1 - k]] == SQ_NONE) k = 1 - k;
+        H.val[slot[k]] = 1;
         uint32_t *t = tri + 6 * (size_t)q;
         t[0] = c[k], t[1] = c[k + 1], t[2] = c[(k + 2) % 4];
         t[3] = c[k], t[4] = c[(k + 2) % 4], t[5] = c[(k + 3) % 4];
     }
+    sq_edge_hash_free(&H);
     sq_status st = sq_cgal_self_intersections(Q->nv, Q->pos, 2 * Q->nq, tri, pairs, NULL, err);
     free(tri);
     return st;
