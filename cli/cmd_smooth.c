@@ -238,7 +238,7 @@ int sq_cmd_smooth(int argc, char **argv)
                "rejected (%ld trial states would fold a quad), %d backtracks, %d steps rejected%s\n",
                stats.untangle_iterations, stats.iterations, stats.solver_iterations, stats.linear_solver,
                stats.solver_rejected, stats.fold_rejections, stats.backtracks, stats.steps_rejected,
-               stats.thorough ? " (the first quick step failed: solved as thoroughly as untangling)" : "");
+               stats.thorough ? " (quick steps failed or stalled: then solved as thoroughly as untangling)" : "");
         printf("stop       %s\n", stats.stop_reason);
         printf("energy     %.6g -> %.6g\ntime       %.2f s\n", stats.energy_before, stats.energy_after, total);
         if (st == SQ_OK) printf("output     %s\n", out);

@@ -75,8 +75,9 @@ typedef struct sq_smooth_stats {
     int backtracks;              /* halvings of a step after re-projection      */
     int steps_rejected;          /* outer steps rejected whole (fold / quality) */
     int retries;                 /* damped retries after a rejected step        */
-    int thorough;                /* 1: the first quick step failed, all steps    */
-                                 /* were solved with untangling's bounds         */
+    int thorough;                /* 1: the quick steps failed at once or stalled */
+                                 /* early; the later ones used untangling's      */
+                                 /* bounds (docs/smooth.md)                      */
     double energy_before, energy_after; /* smoothing energy (sum of squares)   */
     double seconds;
     char linear_solver[48];
