@@ -7,7 +7,8 @@
 # naming the vertex, and nothing is written. Bad input (arguments, a missing
 # cones file, Gauss-Bonnet, an unrealizable cone set, a broken mesh) and an
 # unwritable output give the documented exit code and write nothing.
-# Under the sanitizers (SQ_SANITIZE=ON) the six largest maps are skipped.
+# Under the sanitizers (SQ_SANITIZE=ON) the six largest maps are skipped and
+# the loop over the cone files leaves the referee to the plain run.
 # Prints PASS/FAIL per model and a total.
 set -u
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -72,7 +73,12 @@ while IFS=$'\t' read -r file _ _ _ _ _ _ closed genus cones _; do
     fi
     continue
   fi
-  if ! python3 "$referee" "$mesh" "$cfile" "$out.obj" --integer >"$out.ref" 2>&1; then
+  # the plain run has the referee judge these maps; under the sanitizers
+  # this loop looks for memory errors and leaves the referee (about a
+  # third of its time) to the plain run (CI time)
+  if [ "${SQ_SANITIZE:-OFF}" = ON ]; then
+    echo "written, verified by param (the referee runs in the plain build)" >"$out.ref"
+  elif ! python3 "$referee" "$mesh" "$cfile" "$out.obj" --integer >"$out.ref" 2>&1; then
     bad "$file: referee: $(tail -1 "$out.ref")"
     continue
   fi
