@@ -62,7 +62,6 @@ typedef struct smoother {
     double *frame, *h, *ref_normal, *threshold, *x, *cand, *margin, *target, *ideal_log;
     uint32_t *cand_tri, *con_quad, *res_off, *res_param, *res_dim;
     unsigned char *untangle;
-    int thorough; /* smoothing solves as thorough as untangling's from now on */
     sq_smooth_ctx ctx;
 } smoother;
 
@@ -228,7 +227,7 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
                          sq_smooth_feasible_cb, &s->ctx};
     sq_nlls_options no;
     sq_nlls_options_default(&no);
-    int quick = smoothing && !s->thorough;
+    int quick = smoothing && !s->stats->thorough;
     no.max_iterations = quick ? o->solver_iterations : o->untangle_solver_iterations;
     no.max_linear_iterations = quick ? o->linear_iterations : o->untangle_linear_iterations;
     no.function_tolerance = o->function_tolerance;
@@ -434,11 +433,11 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
             st = err ? err->code : SQ_ERR_SOLVER;
             goto done;
         }
-        if (r != 1 && !s.thorough && stats->iterations == 0) {
+        if (r != 1 && !stats->thorough && stats->iterations == 0) {
             /* the short, inexact solves found no acceptable first step
              * (slivers: ill-conditioned normal equations): solve as
              * thoroughly as untangling does from here on */
-            s.thorough = 1, stats->thorough = 1;
+            stats->thorough = 1;
             it--;
             continue;
         }
@@ -467,10 +466,10 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         if (opt->progress) opt->progress(opt->progress_user, "smooth", stats->iterations, e, 0);
         int small = energy - e <= opt->stop_tolerance * energy;
         energy = e;
-        if (small && !s.thorough && e > 0.5 * stats->energy_before) {
+        if (small && !stats->thorough && e > 0.5 * stats->energy_before) {
             /* the quick steps stalled before removing half the energy
              * (block's skewed quads): go on with thorough solves */
-            s.thorough = 1, stats->thorough = 1;
+            stats->thorough = 1;
             continue;
         }
         if (small) {
