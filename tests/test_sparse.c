@@ -206,6 +206,26 @@ static void refactor_case(uint32_t side)
     matvec_lower(&a, xs, rhs);
     assert_int_equal(sq_spd_solve(f, 1, rhs, x, &err), SQ_OK);
     assert_true(relative_diff(x, xs, n) < 1e-9);
+    /* the same matrix with its triplets in reverse order (the refactor's
+     * cached slots no longer match and are found again), twice */
+    triplets r;
+    trip_init(&r, a.n);
+    for (size_t k = a.count; k-- > 0;) trip_add(&r, a.rows[k], a.cols[k], a.vals[k]);
+    for (int pass = 0; pass < 2; pass++) {
+        memset(x, 0, n * sizeof *x);
+        assert_int_equal(sq_spd_refactor(f, r.count, r.rows, r.cols, r.vals, &err), SQ_OK);
+        assert_int_equal(sq_spd_solve(f, 1, rhs, x, &err), SQ_OK);
+        assert_true(relative_diff(x, xs, n) < 1e-9);
+    }
+    /* a factorization not made for refactoring (sq_spd_factor) refactors too */
+    sq_spd *h = NULL;
+    assert_int_equal(sq_spd_factor(a.n, a.count, a.rows, a.cols, a.vals, &h, &err), SQ_OK);
+    assert_int_equal(sq_spd_refactor(h, r.count, r.rows, r.cols, r.vals, &err), SQ_OK);
+    memset(x, 0, n * sizeof *x);
+    assert_int_equal(sq_spd_solve(h, 1, rhs, x, &err), SQ_OK);
+    assert_true(relative_diff(x, xs, n) < 1e-9);
+    sq_spd_free(h);
+    trip_free(&r);
     assert_int_equal(sq_spd_refactor(NULL, a.count, a.rows, a.cols, a.vals, &err), SQ_ERR_ARGUMENT);
     sq_spd_free(f);
     free(neg);
