@@ -48,9 +48,12 @@ static void help(FILE *f)
             "  - across every seam the two UV copies differ by a rotation by a multiple\n"
             "    of 90 degrees plus an integer translation, exactly in floating point,\n"
             "    with one transition per seam curve;\n"
-            "  - the UV angle sum is k*pi/2 at a cone of valence k and 2*pi elsewhere.\n"
+            "  - the UV angle sum is k*pi/2 at a cone of valence k and 2*pi elsewhere;\n"
+            "  - the output is a refinement of the input: every triangle lies in the\n"
+            "    input triangle it came from (added vertices within 1e-9 of the\n"
+            "    diagonal of it) and faces the same way.\n"
             "The independent referee ../shared/tools/check_param.py MESH CONES OUT.obj\n"
-            "--integer checks the same (and that the refinement lies on the input).\n"
+            "--integer checks the same.\n"
             "\n"
             "The mesh and cones are validated first, as by seamquad check: closed,\n"
             "manifold, connected, oriented, no degenerate face; the cone file matches\n"
@@ -271,6 +274,9 @@ static long peak_rss_kb(void)
  * writing of the staged outputs (both only read P). */
 typedef struct verify_job {
     const sq_param *P;
+    const sq_mesh *mesh;  /* the input: the map must refine it      */
+    double refinement;    /* largest distance of an added vertex off */
+                          /* its input face, over the diagonal       */
     sq_status st;
     sq_error err;
     double t;
@@ -282,6 +288,7 @@ static void *verify_thread(void *arg)
     double t = sq_now();
     sq_error_clear(&V->err);
     V->st = sq_param_verify(V->P, SQ_PARAM_VERIFY_INTEGER, &V->err);
+    if (!V->st) V->st = sq_param_verify_refinement(V->P, V->mesh, &V->refinement, &V->err);
     V->t = sq_now() - t;
     return NULL;
 }
@@ -297,7 +304,7 @@ static sq_status verify_outcome(const verify_job *V, double *t, sq_error *err)
 
 static void print_json(const char *mesh_path, const char *cones_path, const sq_param_stats *s,
                        const uint32_t *hist, double t_read, double t_validate, double t_verify,
-                       double t_output, double t_total, const output *out)
+                       double t_output, double t_total, double refinement, const output *out)
 {
     printf("{\n  \"ok\": true,\n  \"mesh\": ");
     sq_json_string(stdout, mesh_path);
@@ -343,7 +350,9 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            "\"conformal_mean\": %.9g, \"conformal_max\": %.9g},\n",
            s->sym_dirichlet_mean, s->sym_dirichlet_max, s->conformal_mean, s->conformal_max);
     printf("  \"verified\": {\"orientation_exact\": true, \"seams_exact\": true, "
-           "\"integer_translations\": true, \"cones_on_grid\": true, \"angle_sums\": true},\n");
+           "\"integer_translations\": true, \"cones_on_grid\": true, \"angle_sums\": true, "
+           "\"refinement\": true, \"refinement_max_dist\": %.3g},\n",
+           refinement);
     printf("  \"time_s\": {\"read\": %.6f, \"validate\": %.6f, \"cut\": %.6f, \"domain\": %.6f, "
            "\"omega\": %.6f, \"tree\": %.6f, \"boundary\": %.6f, \"cells\": %.6f, \"tutte\": %.6f, "
            "\"check\": %.6f, \"overlay\": %.6f, \"simplify\": %.6f, \"param_total\": %.6f, "
@@ -704,6 +713,7 @@ int sq_cmd_param(int argc, char **argv)
     for (int i = 0; i < NOUT; i++)
         if (out[i].path && sq_is_special_file(out[i].path)) beside = 0;
     V.P = &P;
+    V.mesh = &mesh;
     if (beside && pthread_create(&vth, NULL, verify_thread, &V) != 0) beside = 0;
     if (!beside) {
         stage = "verify";
@@ -763,7 +773,7 @@ int sq_cmd_param(int argc, char **argv)
 
     if (json)
         print_json(mesh_path, cones_path, &stats, hist, t_read, t_validate, t_verify, t_output,
-                   sq_now() - t0, out);
+                   sq_now() - t0, V.refinement, out);
     else
         print_text(mesh_path, &stats, hist, t_read, t_validate, t_verify, t_output, sq_now() - t0,
                    out);

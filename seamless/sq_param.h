@@ -257,6 +257,10 @@ typedef struct sq_param_stats {
                                             /* cut walled a cone in (0: none) */
     uint32_t fan_vertices;                  /* overlay: added by the graded   */
                                             /* fans (sq_param_grade_fans)     */
+    double refinement_max_dist;             /* the largest distance of an     */
+                                            /* added vertex from its input    */
+                                            /* face over the diagonal         */
+                                            /* (sq_param_verify_refinement)   */
     int fallback;                           /* 1: the fallback made the map   */
                                             /* (SQ_FALLBACK_AUTO; tree qtri,  */
                                             /* so tree_qtri is set)           */
@@ -329,6 +333,18 @@ enum {
  * shared/tools/check_param.py; exactness is decided without tolerance
  * (sq_param_io.c explains how). */
 sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err);
+
+/* The 3D side: P's mesh is a refinement of m, the mesh it was built from.
+ * Its first nv_input vertices are m's, bit for bit; every triangle f lies
+ * in its input face tri_in[f] (input vertices among its corners must be
+ * that face's corners; added vertices within 1e-9 of the input's
+ * bounding-box diagonal of it, the referee's tolerance) and faces the same way (unless its 3D area
+ * is below 1e-12 of the squared diagonal). SQ_ERR_INTERNAL names the first
+ * violation (face, vertex, input face; 0-based). max_dist (may be NULL)
+ * gets the largest distance of an added vertex from its input face,
+ * relative to the diagonal. */
+sq_status sq_param_verify_refinement(const sq_param *P, const sq_mesh *m, double *max_dist,
+                                     sq_error *err);
 
 /* Removes added vertices of P that lie off its seams, by half-edge
  * collapses that keep every property sq_param_verify and the referee

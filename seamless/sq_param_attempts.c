@@ -350,6 +350,10 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
         }
         stats->t_simplify = sq_now() - t;
     }
+    /* the 3D side: a refinement of m, whatever the attempt and the
+     * simplification did */
+    if (st == SQ_OK && (st = sq_param_verify_refinement(out, m, &stats->refinement_max_dist, err)))
+        sq_param_free(out);
     stats->t_total = sq_now() - t_start;
     return st;
 }
