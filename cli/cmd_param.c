@@ -50,7 +50,7 @@ static void help(FILE *f)
             "    with one transition per seam curve;\n"
             "  - the UV angle sum is k*pi/2 at a cone of valence k and 2*pi elsewhere;\n"
             "  - the output is a refinement of the input: every triangle lies in the\n"
-            "    input triangle it came from (added vertices within 1e-9 of the\n"
+            "    input triangle it came from (added vertices within 1e-12 of the\n"
             "    diagonal of it) and faces the same way.\n"
             "The independent referee ../shared/tools/check_param.py MESH CONES OUT.obj\n"
             "--integer checks the same.\n"

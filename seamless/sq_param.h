@@ -337,8 +337,8 @@ sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err);
 /* The 3D side: P's mesh is a refinement of m, the mesh it was built from.
  * Its first nv_input vertices are m's, bit for bit; every triangle f lies
  * in its input face tri_in[f] (input vertices among its corners must be
- * that face's corners; added vertices within 1e-9 of the input's
- * bounding-box diagonal of it, the referee's tolerance) and faces the same way (unless its 3D area
+ * that face's corners; added vertices within 1e-12 of the input's
+ * bounding-box diagonal of it) and faces the same way (unless its 3D area
  * is below 1e-12 of the squared diagonal). SQ_ERR_INTERNAL names the first
  * violation (face, vertex, input face; 0-based). max_dist (may be NULL)
  * gets the largest distance of an added vertex from its input face,

@@ -11,7 +11,6 @@
 
 #include <stdint.h>
 
-#include "sq_closest_point_triangle.h"
 #include "sq_error.h"
 
 #ifdef __cplusplus
@@ -47,6 +46,11 @@ void sq_cp_tree_free(sq_cp_tree *t);
 
 /* Nearest point of the triangle mesh to p. */
 void sq_cp_tree_query(const sq_cp_tree *t, const double p[3], sq_cp_hit *hit);
+
+/* Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision
+ * Detection, 5.1.5): barycentrics in bary, the point in q. */
+void sq_closest_point_triangle(const double p[3], const double a[3], const double b[3],
+                               const double c[3], double bary[3], double q[3]);
 
 #ifdef __cplusplus
 }

@@ -507,6 +507,102 @@ static void test_refinement_check(void **state)
     unload(&M);
 }
 
+/* Needles (issue: param's output left the input surface next to needles
+ * and caps): mpz/eight with 300 edges split at 1e-9 to 1e-6 of their
+ * length, both triangles of each split edge cut in two at the new vertex,
+ * so each split makes two needles of area down to 1e-9 of their
+ * neighbours'. param's map must refine it within rounding (the refinement
+ * check at 1e-12 of the diagonal runs inside sq_param_build; its largest
+ * distance is reported) and pass the referee. */
+static void test_needles(void **state)
+{
+    (void)state;
+    model M;
+    load(&M, "mpz/eight");
+    const sq_mesh *m = &M.m;
+    const uint32_t nsplit = 300;
+    sq_soup S;
+    memset(&S, 0, sizeof S);
+    S.nv = m->nv + nsplit, S.nf = m->nf + 2 * nsplit;
+    S.pos = malloc(3 * (size_t)S.nv * sizeof *S.pos);
+    S.face_off = malloc(((size_t)S.nf + 1) * sizeof *S.face_off);
+    S.face_idx = malloc(3 * (size_t)S.nf * sizeof *S.face_idx);
+    uint8_t *touched = calloc(m->nf, 1);
+    assert_true(S.pos && S.face_off && S.face_idx && touched);
+    memcpy(S.pos, m->pos, 3 * (size_t)m->nv * sizeof *S.pos);
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h = m->f_he[f];
+        for (int k = 0; k < 3; k++, h = m->he_next[h]) S.face_idx[3 * (size_t)f + k] = m->he_vert[h];
+    }
+    /* halfedge h of face f is its corner k's outgoing side; split the
+     * sides of untouched face pairs, a deterministic pseudo-random choice */
+    uint64_t rng = 88172645463325252ull;
+    uint32_t nv = m->nv, nf = m->nf, done = 0;
+    for (uint32_t tries = 0; done < nsplit && tries < 100000; tries++) {
+        rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
+        const uint32_t h = (uint32_t)(rng % m->nh), t = m->he_twin[h];
+        const uint32_t f = m->he_face[h], g = m->he_face[t];
+        if (touched[f] || touched[g]) continue;
+        touched[f] = touched[g] = 1;
+        const uint32_t a = m->he_vert[h], b = m->he_vert[t];
+        const double frac = pow(10.0, -9.0 + 3.0 * (double)(rng >> 11) / 9007199254740992.0);
+        for (int d = 0; d < 3; d++)
+            S.pos[3 * (size_t)nv + d] = m->pos[3 * (size_t)a + d] + frac * (m->pos[3 * (size_t)b + d] - m->pos[3 * (size_t)a + d]);
+        /* each of the two faces (x, y, c) with side x -> y on the edge
+         * becomes (x, n, c) and (n, y, c) */
+        const uint32_t face[2] = {f, g};
+        for (int s2 = 0; s2 < 2; s2++) {
+            uint32_t *F = S.face_idx + 3 * (size_t)face[s2];
+            int k = 0;
+            while (!((F[k] == a && F[(k + 1) % 3] == b) || (F[k] == b && F[(k + 1) % 3] == a))) k++;
+            const uint32_t x = F[k], y = F[(k + 1) % 3], c = F[(k + 2) % 3];
+            F[0] = x, F[1] = nv, F[2] = c;
+            uint32_t *G = S.face_idx + 3 * (size_t)nf++;
+            G[0] = nv, G[1] = y, G[2] = c;
+        }
+        nv++, done++;
+    }
+    assert_int_equal(done, nsplit);
+    for (uint32_t f = 0; f <= S.nf; f++) S.face_off[f] = 3 * f;
+    model N;
+    memset(&N, 0, sizeof N);
+    sq_error err = {0};
+    if (sq_mesh_from_soup(&S, 0, &N.m, &err)) fail_msg("eight with needles: %s", err.msg);
+    N.val = malloc((size_t)S.nv * sizeof *N.val);
+    assert_non_null(N.val);
+    for (uint32_t v = 0; v < S.nv; v++) N.val[v] = v < m->nv ? M.val[v] : 4;
+    /* the files the referee reads */
+    strcpy(N.mesh_path, "/tmp/sq_test_needles_XXXXXX");
+    int fd = mkstemp(N.mesh_path);
+    assert_true(fd >= 0);
+    FILE *o = fdopen(fd, "w");
+    for (uint32_t v = 0; v < S.nv; v++)
+        fprintf(o, "v %.17g %.17g %.17g\n", S.pos[3 * (size_t)v], S.pos[3 * (size_t)v + 1], S.pos[3 * (size_t)v + 2]);
+    for (uint32_t f = 0; f < S.nf; f++)
+        fprintf(o, "f %u %u %u\n", S.face_idx[3 * (size_t)f] + 1, S.face_idx[3 * (size_t)f + 1] + 1,
+                S.face_idx[3 * (size_t)f + 2] + 1);
+    fclose(o);
+    snprintf(N.cone_path, sizeof N.cone_path, "%s.cones", N.mesh_path);
+    o = fopen(N.cone_path, "w");
+    assert_non_null(o);
+    for (uint32_t v = 0; v < S.nv; v++) fprintf(o, "%.17g\n", N.val[v] * (2 * atan(1.0)));
+    fclose(o);
+    sq_param P;
+    sq_param_init(&P);
+    sq_param_stats st;
+    if (sq_param_build(&N.m, N.val, NULL, &P, &st, &err)) fail_msg("eight with needles: %s", err.msg);
+    assert_true(st.refinement_max_dist < 1e-14);
+    assert_int_equal(sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err), SQ_OK);
+    assert_referee_passes(&N, &P, "eight with 300 needle pairs");
+    printf("  eight with 300 needle pairs: %u faces, farthest added vertex %.2g of the diagonal\n", P.nf,
+           st.refinement_max_dist);
+    remove(N.mesh_path), remove(N.cone_path);
+    sq_param_free(&P);
+    unload(&N);
+    free(S.pos), free(S.face_off), free(S.face_idx), free(touched);
+    unload(&M);
+}
+
 /* A cells map of the first default attempt yields to the fallback's first
  * (sq_param_attempts.c, replaces_cells): mpz/genus3 passes at attempt 1
  * with the cells' map (mean conformal ratio 5.2e10) and at the fallback's
@@ -767,6 +863,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_eight_passes),
         cmocka_unit_test(test_refinement_check),
+        cmocka_unit_test(test_needles),
         cmocka_unit_test(test_cup_guided),
         cmocka_unit_test(test_threads),
         cmocka_unit_test(test_fallback_threads),

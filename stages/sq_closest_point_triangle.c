@@ -1,6 +1,6 @@
 /* seamquad: closest point of one triangle to a point (Ericson, "Real-Time
  * Collision Detection", 5.1.5: Voronoi regions of vertices, edges, face). */
-#include "sq_closest_point_triangle.h"
+#include "sq_closest_point.h"
 
 static double dot3(const double *u, const double *v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
 
