@@ -79,11 +79,9 @@ sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param 
              * grid, which flips triangles far below it (param's rectangles'
              * maps have them); with the translations fixed every iterate is
              * exact as it is, so the round is run that way instead. */
-            uint32_t done = r.iterations;
             o.basis = SQ_OPTIMIZE_FIXED_TRANSITIONS;
             if ((st = sq_optimize_map(M, &o, &r, err))) return st;
             rep->fixed_rounds++;
-            (void)done;
         }
         rep->iterations += r.iterations;
         rep->reference_iterations += r.reference_iterations;
