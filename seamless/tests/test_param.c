@@ -582,7 +582,7 @@ static void test_needles(void **state)
         fprintf(o, "f %u %u %u\n", S.face_idx[3 * (size_t)f] + 1, S.face_idx[3 * (size_t)f + 1] + 1,
                 S.face_idx[3 * (size_t)f + 2] + 1);
     fclose(o);
-    snprintf(N.cone_path, sizeof N.cone_path, "%s.cones", N.mesh_path);
+    snprintf(N.cone_path, sizeof N.cone_path, "%.500s.cones", N.mesh_path);
     o = fopen(N.cone_path, "w");
     assert_non_null(o);
     for (uint32_t v = 0; v < S.nv; v++) fprintf(o, "%.17g\n", N.val[v] * (2 * atan(1.0)));
