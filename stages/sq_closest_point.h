@@ -47,8 +47,9 @@ void sq_cp_tree_free(sq_cp_tree *t);
 /* Nearest point of the triangle mesh to p. */
 void sq_cp_tree_query(const sq_cp_tree *t, const double p[3], sq_cp_hit *hit);
 
-/* Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision
- * Detection, 5.1.5): barycentrics in bary, the point in q. */
+/* Closest point of triangle (a, b, c) to p: barycentrics in bary, the
+ * point in q (exact at a corner or on a side's endpoints; accurate on
+ * needles, sq_closest_point_triangle.c). */
 void sq_closest_point_triangle(const double p[3], const double a[3], const double b[3],
                                const double c[3], double bary[3], double q[3]);
 

@@ -438,8 +438,9 @@ static void test_split_walls(void **state)
     unload(&M);
 }
 
-/* sq_param_verify_refinement: eight's map (overlay) and cells map refine
- * the input, added vertices within roundoff of their input faces; a vertex
+/* sq_param_verify_refinement (which sq_param_build runs on every map it
+ * returns, the cells' of test_eight_passes too): eight's map refines the
+ * input, added vertices within rounding of their input faces; a vertex
  * moved off its face, a moved input vertex, a face given another input
  * face, and a face turned over are each refused, named. */
 static void test_refinement_check(void **state)
@@ -448,13 +449,10 @@ static void test_refinement_check(void **state)
     model M;
     load(&M, "mpz/eight");
     sq_error err = {0};
-    for (int cells = 0; cells <= 1; cells++) {
-        sq_param_options opt;
-        sq_param_options_default(&opt);
-        if (cells) opt.interior = SQ_INTERIOR_CELLS;
+    {
         sq_param P;
         sq_param_init(&P);
-        if (sq_param_build(&M.m, M.val, &opt, &P, NULL, &err)) fail_msg("eight: %s", err.msg);
+        if (sq_param_build(&M.m, M.val, NULL, &P, NULL, &err)) fail_msg("eight: %s", err.msg);
         double dist = 1;
         assert_int_equal(sq_param_verify_refinement(&P, &M.m, &dist, &err), SQ_OK);
         assert_true(dist >= 0 && dist < 1e-14);

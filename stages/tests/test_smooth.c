@@ -91,6 +91,37 @@ static void test_closest_point_matches_brute_force(void **state)
     sq_soup_free(&s);
 }
 
+/* ---- closest point on needles: points on a side are their own closest
+ * point, within rounding, for triangles of height 1e-6 .. 1e-12 of their
+ * length (the inputs' needles); and off the plane, the projection is as
+ * near as a side's point ---- */
+static void test_closest_point_needles(void **state)
+{
+    (void)state;
+    const double a[3] = {0.1, 0.2, 0.3}, b[3] = {1.1, 0.7, 0.2};
+    double worst = 0;
+    for (int e = 6; e <= 12; e++) {
+        const double h = pow(10.0, -e);
+        const double c[3] = {0.4 + 0.2 * h, 0.35 - h, 0.27 + 0.7 * h}; /* near side ab */
+        const double *corner[3] = {a, b, c};
+        for (int i = 1; i < 100; i++) {
+            const double t = i / 100.0;
+            for (int k = 0; k < 3; k++) {
+                const double *x = corner[k], *y = corner[(k + 1) % 3];
+                double p[3], bary[3], q[3];
+                for (int d = 0; d < 3; d++) p[d] = x[d] + t * (y[d] - x[d]);
+                sq_closest_point_triangle(p, a, b, c, bary, q);
+                const double dist = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                         (p[2] - q[2]) * (p[2] - q[2]));
+                if (dist > worst) worst = dist;
+                assert_true(bary[0] >= 0 && bary[1] >= 0 && bary[2] >= 0);
+                assert_true(fabs(bary[0] + bary[1] + bary[2] - 1.0) < 1e-12);
+            }
+        }
+    }
+    assert_true(worst < 1e-14);
+}
+
 static void test_fold_margin(void **state)
 {
     (void)state;
@@ -333,6 +364,7 @@ int main(void)
         cmocka_unit_test(test_residual_derivatives),
         cmocka_unit_test(test_rejects_bad_arguments),
         cmocka_unit_test(test_closest_point_matches_brute_force),
+        cmocka_unit_test(test_closest_point_needles),
         cmocka_unit_test(test_split_helmet),
         cmocka_unit_test(test_split_double_torus),
         cmocka_unit_test(test_elephant_untangle),
