@@ -83,8 +83,11 @@ assert ang < max_angle, ang
 for k in ("cones", "param", "optimize", "quantize", "extract", "smooth", "verify", "total"):
     assert j["time_s"][k] >= 0, k
 sm = j["smooth"]
-if sm["smoothed"]:
+if sm["smoothed"] and sm["iterations"] > 0:
     assert sm["angle_mean_dev_after"] < sm["angle_mean_dev_before"], sm
+if sm["smoothed"]:
+    # no step taken (already smooth): only the re-projection's rounding
+    assert sm["angle_mean_dev_after"] <= sm["angle_mean_dev_before"] + 1e-9, sm
     assert abs(sm["angle_mean_dev_after"] - ang) < 1e-6, (sm, ang)
 PY
     ok; echo "PASS $name: $(tail -1 "$out.ref")"
