@@ -274,9 +274,6 @@ static long peak_rss_kb(void)
  * writing of the staged outputs (both only read P). */
 typedef struct verify_job {
     const sq_param *P;
-    const sq_mesh *mesh;  /* the input: the map must refine it      */
-    double refinement;    /* largest distance of an added vertex off */
-                          /* its input face, over the diagonal       */
     sq_status st;
     sq_error err;
     double t;
@@ -288,7 +285,6 @@ static void *verify_thread(void *arg)
     double t = sq_now();
     sq_error_clear(&V->err);
     V->st = sq_param_verify(V->P, SQ_PARAM_VERIFY_INTEGER, &V->err);
-    if (!V->st) V->st = sq_param_verify_refinement(V->P, V->mesh, &V->refinement, &V->err);
     V->t = sq_now() - t;
     return NULL;
 }
@@ -304,7 +300,7 @@ static sq_status verify_outcome(const verify_job *V, double *t, sq_error *err)
 
 static void print_json(const char *mesh_path, const char *cones_path, const sq_param_stats *s,
                        const uint32_t *hist, double t_read, double t_validate, double t_verify,
-                       double t_output, double t_total, double refinement, const output *out)
+                       double t_output, double t_total, const output *out)
 {
     printf("{\n  \"ok\": true,\n  \"mesh\": ");
     sq_json_string(stdout, mesh_path);
@@ -352,7 +348,7 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
     printf("  \"verified\": {\"orientation_exact\": true, \"seams_exact\": true, "
            "\"integer_translations\": true, \"cones_on_grid\": true, \"angle_sums\": true, "
            "\"refinement\": true, \"refinement_max_dist\": %.3g},\n",
-           refinement);
+           s->refinement_max_dist); /* sq_param_build checked it */
     printf("  \"time_s\": {\"read\": %.6f, \"validate\": %.6f, \"cut\": %.6f, \"domain\": %.6f, "
            "\"omega\": %.6f, \"tree\": %.6f, \"boundary\": %.6f, \"cells\": %.6f, \"tutte\": %.6f, "
            "\"check\": %.6f, \"overlay\": %.6f, \"simplify\": %.6f, \"param_total\": %.6f, "
@@ -713,7 +709,6 @@ int sq_cmd_param(int argc, char **argv)
     for (int i = 0; i < NOUT; i++)
         if (out[i].path && sq_is_special_file(out[i].path)) beside = 0;
     V.P = &P;
-    V.mesh = &mesh;
     if (beside && pthread_create(&vth, NULL, verify_thread, &V) != 0) beside = 0;
     if (!beside) {
         stage = "verify";
@@ -773,7 +768,7 @@ int sq_cmd_param(int argc, char **argv)
 
     if (json)
         print_json(mesh_path, cones_path, &stats, hist, t_read, t_validate, t_verify, t_output,
-                   sq_now() - t0, V.refinement, out);
+                   sq_now() - t0, out);
     else
         print_text(mesh_path, &stats, hist, t_read, t_validate, t_verify, t_output, sq_now() - t0,
                    out);

@@ -449,59 +449,57 @@ static void test_refinement_check(void **state)
     model M;
     load(&M, "mpz/eight");
     sq_error err = {0};
-    {
-        sq_param P;
-        sq_param_init(&P);
-        if (sq_param_build(&M.m, M.val, NULL, &P, NULL, &err)) fail_msg("eight: %s", err.msg);
-        double dist = 1;
-        assert_int_equal(sq_param_verify_refinement(&P, &M.m, &dist, &err), SQ_OK);
-        assert_true(dist >= 0 && dist < 1e-14);
-        assert_true(P.nv > P.nv_input);
-        /* an added vertex lifted off its input face along the normal */
-        uint32_t f = 0;
-        while (f < P.nf && P.tri[3 * (size_t)f] < P.nv_input && P.tri[3 * (size_t)f + 1] < P.nv_input &&
-               P.tri[3 * (size_t)f + 2] < P.nv_input)
-            f++;
-        assert_true(f < P.nf);
-        uint32_t v = P.tri[3 * (size_t)f];
-        for (int k = 1; v < P.nv_input; k++) v = P.tri[3 * (size_t)f + k];
-        double keep[3];
-        memcpy(keep, P.pos + 3 * (size_t)v, sizeof keep);
-        const uint32_t h0 = M.m.f_he[P.tri_in[f]];
-        const double *a = M.m.pos + 3 * (size_t)M.m.he_vert[h0];
-        const double *b = M.m.pos + 3 * (size_t)M.m.he_vert[M.m.he_next[h0]];
-        const double *c = M.m.pos + 3 * (size_t)M.m.he_vert[M.m.he_next[M.m.he_next[h0]]];
-        double n[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
-                       (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
-                       (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
-        const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        for (int k = 0; k < 3; k++) P.pos[3 * (size_t)v + k] += 1e-6 * n[k] / len;
-        assert_int_equal(sq_param_verify_refinement(&P, &M.m, NULL, &err), SQ_ERR_INTERNAL);
-        assert_non_null(strstr(err.msg, "added vertex"));
-        assert_non_null(strstr(err.msg, "not a refinement"));
-        memcpy(P.pos + 3 * (size_t)v, keep, sizeof keep);
-        /* an input vertex moved */
-        P.pos[1] += 1e-12;
-        assert_int_equal(sq_param_verify_refinement(&P, &M.m, NULL, &err), SQ_ERR_INTERNAL);
-        assert_non_null(strstr(err.msg, "input vertex 0 moved"));
-        P.pos[1] = M.m.pos[1];
-        /* the face given an input face far away */
-        const uint32_t F = P.tri_in[f];
-        P.tri_in[f] = (F + M.m.nf / 2) % M.m.nf;
-        assert_int_equal(sq_param_verify_refinement(&P, &M.m, NULL, &err), SQ_ERR_INTERNAL);
-        assert_non_null(strstr(err.msg, "its input face"));
-        P.tri_in[f] = F;
-        /* the face turned over */
-        uint32_t t = P.tri[3 * (size_t)f + 1];
-        P.tri[3 * (size_t)f + 1] = P.tri[3 * (size_t)f + 2], P.tri[3 * (size_t)f + 2] = t;
-        if (sq_param_verify_refinement(&P, &M.m, NULL, &err) == SQ_OK)
-            fail_msg("eight: a face turned over passed");
-        assert_non_null(strstr(err.msg, "the other way"));
-        P.tri[3 * (size_t)f + 2] = P.tri[3 * (size_t)f + 1], P.tri[3 * (size_t)f + 1] = t;
-        assert_int_equal(sq_param_verify_refinement(&P, &M.m, NULL, &err), SQ_OK);
-        assert_int_equal(sq_param_verify_refinement(NULL, &M.m, NULL, &err), SQ_ERR_ARGUMENT);
-        sq_param_free(&P);
-    }
+    sq_param P;
+    sq_param_init(&P);
+    if (sq_param_build(&M.m, M.val, NULL, &P, NULL, &err)) fail_msg("eight: %s", err.msg);
+    double dist = 1;
+    assert_int_equal(sq_param_verify_refinement(&P, &M.m, &dist, &err), SQ_OK);
+    assert_true(dist >= 0 && dist < 1e-14);
+    assert_true(P.nv > P.nv_input);
+    /* an added vertex lifted off its input face along the normal */
+    uint32_t f = 0;
+    while (f < P.nf && P.tri[3 * (size_t)f] < P.nv_input && P.tri[3 * (size_t)f + 1] < P.nv_input &&
+           P.tri[3 * (size_t)f + 2] < P.nv_input)
+        f++;
+    assert_true(f < P.nf);
+    uint32_t v = P.tri[3 * (size_t)f];
+    for (int k = 1; v < P.nv_input; k++) v = P.tri[3 * (size_t)f + k];
+    double keep[3];
+    memcpy(keep, P.pos + 3 * (size_t)v, sizeof keep);
+    const uint32_t h0 = M.m.f_he[P.tri_in[f]];
+    const double *a = M.m.pos + 3 * (size_t)M.m.he_vert[h0];
+    const double *b = M.m.pos + 3 * (size_t)M.m.he_vert[M.m.he_next[h0]];
+    const double *c = M.m.pos + 3 * (size_t)M.m.he_vert[M.m.he_next[M.m.he_next[h0]]];
+    double n[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+                   (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+                   (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
+    const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++) P.pos[3 * (size_t)v + k] += 1e-6 * n[k] / len;
+    assert_int_equal(sq_param_verify_refinement(&P, &M.m, NULL, &err), SQ_ERR_INTERNAL);
+    assert_non_null(strstr(err.msg, "added vertex"));
+    assert_non_null(strstr(err.msg, "not a refinement"));
+    memcpy(P.pos + 3 * (size_t)v, keep, sizeof keep);
+    /* an input vertex moved */
+    P.pos[1] += 1e-12;
+    assert_int_equal(sq_param_verify_refinement(&P, &M.m, NULL, &err), SQ_ERR_INTERNAL);
+    assert_non_null(strstr(err.msg, "input vertex 0 moved"));
+    P.pos[1] = M.m.pos[1];
+    /* the face given an input face far away */
+    const uint32_t F = P.tri_in[f];
+    P.tri_in[f] = (F + M.m.nf / 2) % M.m.nf;
+    assert_int_equal(sq_param_verify_refinement(&P, &M.m, NULL, &err), SQ_ERR_INTERNAL);
+    assert_non_null(strstr(err.msg, "its input face"));
+    P.tri_in[f] = F;
+    /* the face turned over */
+    uint32_t t = P.tri[3 * (size_t)f + 1];
+    P.tri[3 * (size_t)f + 1] = P.tri[3 * (size_t)f + 2], P.tri[3 * (size_t)f + 2] = t;
+    if (sq_param_verify_refinement(&P, &M.m, NULL, &err) == SQ_OK)
+        fail_msg("eight: a face turned over passed");
+    assert_non_null(strstr(err.msg, "the other way"));
+    P.tri[3 * (size_t)f + 2] = P.tri[3 * (size_t)f + 1], P.tri[3 * (size_t)f + 1] = t;
+    assert_int_equal(sq_param_verify_refinement(&P, &M.m, NULL, &err), SQ_OK);
+    assert_int_equal(sq_param_verify_refinement(NULL, &M.m, NULL, &err), SQ_ERR_ARGUMENT);
+    sq_param_free(&P);
     unload(&M);
 }
 
