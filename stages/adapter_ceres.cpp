@@ -99,6 +99,9 @@ extern "C" sq_status sq_nlls_solve(const sq_nlls_problem *p, const sq_nlls_optio
                 blocks.push_back(p->x + (size_t)p->con_param[i] * bs);
             problem.AddResidualBlock(new FeasibilityCost(p, c), nullptr, blocks);
         }
+        if (p->constant)
+            for (uint32_t b = 0; b < p->nblock; b++)
+                if (p->constant[b]) problem.SetParameterBlockConstant(p->x + (size_t)b * bs);
 
         ceres::Solver::Options so;
         so.minimizer_type = ceres::TRUST_REGION;

@@ -52,6 +52,7 @@ typedef struct sq_nlls_problem {
     const uint32_t *con_param;  /* con_off[ncon]                           */
     sq_nlls_feasible_fn feasible;
     void *user;
+    const unsigned char *constant; /* nblock, or NULL: 1 = block held fixed     */
 } sq_nlls_problem;
 
 typedef struct sq_nlls_options {

@@ -24,6 +24,7 @@
 #define MAX_BACKTRACK 8
 #define MAX_RETRY 2         /* damped retries of a rejected outer step        */
 #define DAMPING_START 0.25  /* damping weight of the first retry             */
+#define PIN_SJAC_FLOOR 0.2  /* a pin may not take a quad's scaled Jacobian below */
 
 void sq_smooth_options_default(sq_smooth_options *o)
 {
@@ -40,6 +41,7 @@ void sq_smooth_options_default(sq_smooth_options *o)
     o->barrier_weight = 0.1;
     o->fold_margin = 0.01;
     o->untangle_target = 1e-3;
+    o->pin_threshold = 0.3;
     o->function_tolerance = 1e-6;
     o->stop_tolerance = 1e-4;
     o->gradient_tolerance = 1e-10;
@@ -61,6 +63,11 @@ typedef struct smoother {
     uint32_t *vtri;             /* nv: surface triangle of each vertex       */
     double *frame, *h, *ref_normal, *threshold, *x, *cand, *margin, *target, *ideal_log;
     uint32_t *cand_tri, *con_quad, *res_off, *res_param, *res_dim;
+    uint32_t *pin_v, *pin_s;    /* snv each: candidate pins (sq_smooth_pin.c)  */
+    unsigned char *pinned;      /* nv: 1 = held on a surface vertex (Fidelity) */
+    uint32_t *vq_off, *vq;      /* quads around each vertex (CSR: nv+1, 4*nq)  */
+    uint32_t snv;
+    const double *spos;
     unsigned char *untangle;
     sq_smooth_ctx ctx;
 } smoother;
@@ -189,6 +196,65 @@ static void revert_worsened(smoother *s, const sq_quad_quality *g)
     }
 }
 
+/* Fidelity pins (docs/smooth.md, "Fidelity"): each surface vertex that
+ * the quads miss by a wide gap (sq_smooth_find_pins) gets its quad vertex
+ * moved onto it and held there, unless that would take one of the vertex's
+ * quads below its fold threshold, or its scaled Jacobian below both its own
+ * and the larger of PIN_SJAC_FLOOR and the untangled mesh's minimum, or the
+ * mesh's mean |angle - 90| or mean edge ratio above the untangled mesh's:
+ * the smoother's promise (docs/smooth.md, "Acceptance") holds with pins. Returns the number of
+ * vertices pinned now, or -1 with err set. */
+static int pin_far_surface_vertices(smoother *s, sq_error *err)
+{
+    uint32_t n;
+    if (sq_smooth_find_pins(s->snv, s->spos, s->nv, s->pos, s->nq, s->quads, s->h, s->opt->pin_threshold,
+                            s->pin_v, s->pin_s, &n, err) != SQ_OK)
+        return -1;
+    const sq_quad_quality *in = &s->stats->untangled; /* the promise is kept from here */
+    double floor = fmax(PIN_SJAC_FLOOR, in->sjac_min);
+    sq_quad_quality g;
+    sq_quad_quality_compute(s->pos, s->nq, s->quads, &g);
+    double ang_sum = g.angle_mean_dev_deg * s->nq, ratio_sum = g.edge_ratio_mean * s->nq;
+    int pinned = 0;
+    for (uint32_t a = 0; a < n; a++) {
+        uint32_t v = s->pin_v[a];
+        uint32_t deg = s->vq_off[v + 1] - s->vq_off[v];
+        if (s->pinned[v] || deg > 16) continue;
+        sq_quad_quality qo[16], qn;
+        for (uint32_t j = 0; j < deg; j++)
+            sq_quad_quality_compute(s->pos, 1, s->quads + 4 * (size_t)s->vq[s->vq_off[v] + j], &qo[j]);
+        double *x = s->pos + 3 * (size_t)v, old[3];
+        memcpy(old, x, sizeof old);
+        sq_cp_hit hit; /* the surface vertex as a point of one of its triangles */
+        sq_cp_tree_query(&s->tree, s->spos + 3 * (size_t)s->pin_s[a], &hit);
+        memcpy(x, hit.point, sizeof hit.point);
+        int ok = 1;
+        double dang = 0.0, dratio = 0.0;
+        for (uint32_t j = 0; j < deg && ok; j++) {
+            uint32_t q = s->vq[s->vq_off[v] + j];
+            const uint32_t *f = s->quads + 4 * (size_t)q;
+            sq_quad_quality_compute(s->pos, 1, f, &qn);
+            double m = sq_quad_fold_margin(s->pos + 3 * (size_t)f[0], s->pos + 3 * (size_t)f[1],
+                                           s->pos + 3 * (size_t)f[2], s->pos + 3 * (size_t)f[3]);
+            ok = !qn.folded && m >= s->threshold[q] && qn.sjac_min >= fmin(qo[j].sjac_min, floor);
+            dang += qn.angle_mean_dev_deg - qo[j].angle_mean_dev_deg;
+            dratio += qn.edge_ratio_mean - qo[j].edge_ratio_mean;
+        }
+        ok = ok && (ang_sum + dang) / s->nq < in->angle_mean_dev_deg &&
+             (ratio_sum + dratio) / s->nq <= in->edge_ratio_mean;
+        if (!ok) {
+            memcpy(x, old, sizeof old);
+            continue;
+        }
+        ang_sum += dang, ratio_sum += dratio;
+        s->vtri[v] = hit.tri;
+        memcpy(s->vbary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
+        s->pinned[v] = 1;
+        pinned++;
+    }
+    return pinned;
+}
+
 /* One outer step. Returns 1 accepted, 0 rejected (would fold or not
  * decrease), 2 no progress (Ceres took no step), or -1 with err set. */
 static int outer_step(smoother *s, int smoothing, sq_error *err)
@@ -224,7 +290,7 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
     memset(s->x, 0, 2 * (size_t)s->nv * sizeof(double));
     sq_nlls_problem p = {s->nv, 2, s->x, nres, s->res_off, s->res_param, s->res_dim,
                          sq_smooth_residual_cb, ncon, con_off, con_param,
-                         sq_smooth_feasible_cb, &s->ctx};
+                         sq_smooth_feasible_cb, &s->ctx, smoothing ? s->pinned : NULL};
     sq_nlls_options no;
     sq_nlls_options_default(&no);
     int quick = smoothing && !s->stats->thorough;
@@ -248,6 +314,12 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
     double lambda = 1.0;
     for (int bt = 0; bt <= MAX_BACKTRACK; bt++, lambda *= 0.5) {
         for (uint32_t v = 0; v < s->nv; v++) {
+            if (smoothing && s->pinned[v]) { /* held exactly where it is */
+                memcpy(s->cand + 3 * (size_t)v, s->pos + 3 * (size_t)v, 3 * sizeof(double));
+                memcpy(s->cand_bary + 3 * (size_t)v, s->vbary + 3 * (size_t)v, 3 * sizeof(double));
+                s->cand_tri[v] = s->vtri[v];
+                continue;
+            }
             const double *b = s->ctx.base + 3 * (size_t)v, *f = s->frame + 9 * (size_t)v;
             double y[3];
             for (int k = 0; k < 3; k++)
@@ -332,6 +404,12 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     s.res_off = malloc(((size_t)nq + nv + 1) * sizeof(uint32_t));
     s.res_param = malloc((4 * (size_t)nq + nv) * sizeof(uint32_t));
     s.res_dim = malloc(((size_t)nq + nv) * sizeof(uint32_t));
+    s.pin_v = malloc(((size_t)snv + 1) * sizeof(uint32_t));
+    s.pin_s = malloc(((size_t)snv + 1) * sizeof(uint32_t));
+    s.pinned = calloc(nv, 1);
+    s.vq_off = calloc((size_t)nv + 1, sizeof(uint32_t));
+    s.vq = malloc(4 * (size_t)nq * sizeof(uint32_t));
+    s.snv = snv, s.spos = spos;
     s.untangle = calloc(nq, 1);
     s.target = malloc(4 * (size_t)nq * sizeof(double));
     s.ideal_log = malloc(4 * (size_t)nq * sizeof(double));
@@ -340,11 +418,17 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     s.cand_bary = malloc(3 * (size_t)nv * sizeof(double));
     if (!tri_normal || !base || !s.vtri || !s.frame || !s.h || !s.ref_normal || !s.threshold || !s.margin ||
         !s.x || !s.cand || !s.cand_tri || !s.con_quad || !s.res_off || !s.res_param || !s.res_dim ||
-        !s.untangle || !s.target || !s.ideal_log || !vnormal || !s.vbary || !s.cand_bary) {
+        !s.untangle || !s.pin_v || !s.pin_s || !s.pinned || !s.vq_off || !s.vq || !s.target || !s.ideal_log || !vnormal || !s.vbary || !s.cand_bary) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory for %u vertices", nv);
         goto done;
     }
     s.tri_normal = tri_normal, s.vnormal = vnormal, s.stri = stri;
+    for (size_t i = 0; i < 4 * (size_t)nq; i++) s.vq_off[quads[i] + 1]++;
+    for (uint32_t v = 0; v < nv; v++) s.vq_off[v + 1] += s.vq_off[v];
+    for (uint32_t q = 0; q < nq; q++) /* fill, then shift back */
+        for (int k = 0; k < 4; k++) s.vq[s.vq_off[quads[4 * (size_t)q + k]]++] = q;
+    for (uint32_t v = nv; v > 0; v--) s.vq_off[v] = s.vq_off[v - 1];
+    s.vq_off[0] = 0;
     double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
     for (uint32_t v = 0; v < snv; v++)
         for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], spos[3 * (size_t)v + k]), hi[k] = fmax(hi[k], spos[3 * (size_t)v + k]);
@@ -428,6 +512,18 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     for (int it = 0; it < opt->iterations; it++) {
         memcpy(base, pos, 3 * (size_t)nv * sizeof(double));
         set_frames(&s);
+        /* fidelity pins from the second half of the iterations on (measured:
+         * pinning from the start stalls the smoothing of crease-rich
+         * models sooner; docs/smooth.md, "Fidelity"); a retry keeps the pins */
+        if (opt->pin_threshold > 0.0 && stats->iterations >= opt->iterations / 2 && !retries) {
+            int np = pin_far_surface_vertices(&s, err);
+            if (np < 0) {
+                st = err ? err->code : SQ_ERR_NOMEM;
+                goto done;
+            }
+            stats->pinned += (uint32_t)np;
+            if (np) energy = sq_smooth_energy(&s.ctx, pos);
+        }
         int r = outer_step(&s, 1, err);
         if (r < 0) {
             st = err ? err->code : SQ_ERR_SOLVER;
@@ -488,7 +584,8 @@ done:
     sq_cp_tree_free(&s.tree);
     free(tri_normal), free(base), free(s.vtri), free(s.frame), free(s.h), free(s.ref_normal);
     free(s.threshold), free(s.margin), free(s.x), free(s.cand), free(s.cand_tri), free(s.con_quad);
-    free(s.res_off), free(s.res_param), free(s.res_dim), free(s.untangle);
+    free(s.res_off), free(s.res_param), free(s.res_dim), free(s.untangle), free(s.pin_v), free(s.pin_s);
+    free(s.pinned), free(s.vq_off), free(s.vq);
     free(vnormal), free(s.vbary), free(s.cand_bary), free(s.target), free(s.ideal_log);
     return st;
 }

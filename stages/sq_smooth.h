@@ -52,6 +52,11 @@ typedef struct sq_smooth_options {
     double fold_margin;      /* keep every quad's fold margin >= min(this, half   */
                              /* its margin after untangling) (0.01)               */
     double untangle_target;  /* untangle until every fold margin >= this (1e-3)   */
+    double pin_threshold;    /* fidelity pins (docs/smooth.md, "Fidelity"): a     */
+                             /* surface vertex that the quads miss by more than  */
+                             /* this times the local edge length (and by half    */
+                             /* the widest gap) gets a quad vertex held on it    */
+                             /* (0.3; 0: no pins)                                */
     double function_tolerance, gradient_tolerance, parameter_tolerance; /* Ceres  */
     double stop_tolerance;   /* stop when an outer iteration lowers the energy by */
                              /* less than this, relative (1e-4)                   */
@@ -75,6 +80,7 @@ typedef struct sq_smooth_stats {
     int backtracks;              /* halvings of a step after re-projection      */
     int steps_rejected;          /* outer steps rejected whole (fold / quality) */
     int retries;                 /* damped retries after a rejected step        */
+    uint32_t pinned;             /* quad vertices held on surface vertices      */
     int thorough;                /* 1: the quick steps failed at once or stalled */
                                  /* early; the later ones used untangling's      */
                                  /* bounds (docs/smooth.md)                      */

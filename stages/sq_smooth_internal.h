@@ -42,6 +42,15 @@ int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *c
 /* Sum of squared residuals of all quads at positions pos (3*nv). */
 double sq_smooth_energy(const sq_smooth_ctx *c, const double *pos);
 
+/* Fidelity pins (docs/smooth.md, "Fidelity"): the surface vertices i
+ * (snv, spos) whose distance to the quad surface (each quad split along
+ * its shorter diagonal, as the referee does) exceeds both theta * h[v] and
+ * half the largest such distance, v being the nearest corner of the quad
+ * triangle nearest to i: the pairs (pin_v, pin_s), room for snv each. */
+sq_status sq_smooth_find_pins(uint32_t snv, const double *spos, uint32_t nv, const double *pos, uint32_t nq,
+                              const uint32_t *quads, const double *h, double theta, uint32_t *pin_v,
+                              uint32_t *pin_s, uint32_t *npin, sq_error *err);
+
 /* Callbacks for sq_nlls_solve: residual blocks 0..nq-1 are the quads;
  * blocks nq..nq+nv-1 (when damping > 0) are damping * (a, b) of vertex
  * r - nq (a damped, shorter step on a retry). Parameter block i is vertex
