@@ -202,8 +202,8 @@ static void revert_worsened(smoother *s, const sq_quad_quality *g)
  * quads below its fold threshold, or its scaled Jacobian below both its own
  * and the larger of PIN_SJAC_FLOOR and the untangled mesh's minimum, or the
  * mesh's mean |angle - 90| or mean edge ratio above the untangled mesh's:
- * the smoother's promise (docs/smooth.md, "Acceptance") holds with pins. Returns the number of
- * vertices pinned now, or -1 with err set. */
+ * the smoother's promise (docs/smooth.md, "Acceptance") holds with pins.
+ * Returns the number of vertices pinned now, or -1 with err set. */
 static int pin_far_surface_vertices(smoother *s, sq_error *err)
 {
     uint32_t n;
@@ -418,7 +418,8 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     s.cand_bary = malloc(3 * (size_t)nv * sizeof(double));
     if (!tri_normal || !base || !s.vtri || !s.frame || !s.h || !s.ref_normal || !s.threshold || !s.margin ||
         !s.x || !s.cand || !s.cand_tri || !s.con_quad || !s.res_off || !s.res_param || !s.res_dim ||
-        !s.untangle || !s.pin_v || !s.pin_s || !s.pinned || !s.vq_off || !s.vq || !s.target || !s.ideal_log || !vnormal || !s.vbary || !s.cand_bary) {
+        !s.untangle || !s.pin_v || !s.pin_s || !s.pinned || !s.vq_off || !s.vq || !s.target || !s.ideal_log ||
+        !vnormal || !s.vbary || !s.cand_bary) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory for %u vertices", nv);
         goto done;
     }
