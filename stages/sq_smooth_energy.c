@@ -73,6 +73,11 @@ int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *c
         cross3(u, w, cr);
         double th = atan2(dot3(cr, n), dot3(u, w));
         if (th < 0.0) th += 2.0 * SQ_PI;
+        if (c->base_angle) { /* the branch nearest the angle at the solve's start */
+            double b = c->base_angle[4 * (size_t)q + k];
+            if (th > b + SQ_PI) th -= 2.0 * SQ_PI;
+            else if (th < b - SQ_PI) th += 2.0 * SQ_PI;
+        }
         r[k] = c->wa * (th - (c->target ? c->target[4 * (size_t)q + k] : 0.5 * SQ_PI));
         r[4 + k] = c->wl * (log(len[k]) - lmean - (c->ideal_log ? c->ideal_log[4 * (size_t)q + k] : 0.0));
     }

@@ -23,6 +23,9 @@ typedef struct sq_smooth_ctx {
     double wa, wl, wu, wb;
     double damping;          /* weight of the per-vertex damping residuals      */
     long fold_rejections;    /* counted by the feasibility callback             */
+    const double *base_angle;/* 4*nq or NULL: each corner's angle at `base`; a  */
+                             /* corner's angle is then taken on the branch      */
+                             /* within pi of it (continuous during a solve)     */
 } sq_smooth_ctx;
 
 /* Per-corner target angles and per-edge ideal log lengths of every quad

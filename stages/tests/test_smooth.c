@@ -349,6 +349,51 @@ static void test_quads_long(void **state)
     run_quads("quads/botijo_quadriflow5k.obj", "avaxman/botijo.off", 10);
 }
 
+/* ---- a corner's angle stays on its branch during a solve ------------- */
+
+/* A quad whose corner 0 is 2 degrees wide (a sliver corner, as quantize's
+ * bent quads on femur have): moving corner 3 across corner 0's other edge
+ * makes that corner -2 degrees. With the branch of the solve's start
+ * (base_angle) the angle residual moves by about 4 degrees, continuously;
+ * without it, it jumps by 360 degrees (the wrap into (0, 360)), which made
+ * Levenberg-Marquardt reject most steps on such quads. */
+static void test_angle_branch_continuity(void **state)
+{
+    (void)state;
+    const double deg = 3.14159265358979323846 / 180.0;
+    uint32_t quad[4] = {0, 1, 2, 3};
+    double h[4] = {1, 1, 1, 1}, normal[3] = {0, 0, 1}, threshold = -INFINITY, frame[36];
+    for (int k = 0; k < 4; k++) {
+        double f[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        memcpy(frame + 9 * k, f, sizeof f);
+    }
+    /* counterclockwise: corner 0 at the origin, corner 1 along +x, corner 3
+     * at +2 degrees from it */
+    double base[12] = {0, 0, 0, 1, 0, 0, 2, 1, 0, cos(2 * deg), sin(2 * deg), 0};
+    sq_smooth_ctx c;
+    memset(&c, 0, sizeof c);
+    c.nv = 4, c.nq = 1, c.quads = quad, c.base = base, c.frame = frame, c.h = h;
+    c.ref_normal = normal, c.threshold = &threshold;
+    c.wa = 1.0, c.wl = 1.0, c.wb = 0.0;
+    const double *x[4] = {base, base + 3, base + 6, base + 9};
+    double r0[SQ_SMOOTH_MAX_RES], r1[SQ_SMOOTH_MAX_RES], r2[SQ_SMOOTH_MAX_RES];
+    assert_int_equal(sq_smooth_quad_residuals(&c, 0, x, r0), 1);
+    double branch[4];
+    for (int k = 0; k < 4; k++) branch[k] = r0[k] + 0.5 * 3.14159265358979323846;
+    assert_true(fabs(branch[0] - 2 * deg) < 1e-12);
+    double moved[12];
+    memcpy(moved, base, sizeof moved);
+    moved[9] = cos(-2 * deg), moved[10] = sin(-2 * deg); /* corner 0 now -2 degrees */
+    const double *y[4] = {moved, moved + 3, moved + 6, moved + 9};
+    assert_int_equal(sq_smooth_quad_residuals(&c, 0, y, r1), 1); /* no branch: wraps */
+    c.base_angle = branch;
+    assert_int_equal(sq_smooth_quad_residuals(&c, 0, y, r2), 1);
+    print_message("corner 0: residual %.2f deg at the start, %.2f wrapped, %.2f on the branch\n", r0[0] / deg,
+                  r1[0] / deg, r2[0] / deg);
+    assert_true(fabs(r1[0] - r0[0] - 356 * deg) < 1e-9);
+    assert_true(fabs(r2[0] - r0[0] + 4 * deg) < 1e-9);
+}
+
 /* ---- the residuals' derivatives agree with central differences -------- */
 
 /* One quad's residual callback, its Jacobian against central differences
@@ -433,6 +478,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fold_margin),
         cmocka_unit_test(test_residual_derivatives),
+        cmocka_unit_test(test_angle_branch_continuity),
         cmocka_unit_test(test_rejects_bad_arguments),
         cmocka_unit_test(test_closest_point_matches_brute_force),
         cmocka_unit_test(test_closest_point_needles),
