@@ -97,6 +97,12 @@ fi
 "$bin" smooth "$data/quads/bunny_quadriflow5k.obj" --surface "$data/libigl/bunny.off" -o "$tmp/x.obj" \
   --iterations -3 2>/dev/null
 [ $? -eq 2 ] && [ ! -e "$tmp/x.obj" ] && ok || bad "negative --iterations"
+for t in -1 abc nan; do
+  "$bin" smooth "$data/quads/bunny_quadriflow5k.obj" --surface "$data/libigl/bunny.off" -o "$tmp/x.obj" \
+    --pin-threshold "$t" 2>"$tmp/e.txt"
+  [ $? -eq 2 ] && [ ! -e "$tmp/x.obj" ] && grep -q -- "--pin-threshold" "$tmp/e.txt" && ok ||
+    bad "--pin-threshold $t: $(cat "$tmp/e.txt")"
+done
 # a triangle mesh is not a quad mesh: exit 1, the message names the face, no output
 "$bin" smooth "$data/libigl/bunny.off" --surface "$data/libigl/bunny.off" -o "$tmp/x.obj" 2>"$tmp/e.txt"
 rc=$?
