@@ -9,7 +9,9 @@
  * only if no quad folds there and (smoothing) no referee measure gets
  * worse (quality_not_worse, after revert_worsened); otherwise the step is
  * halved, up to MAX_BACKTRACK times, then retried with damping, then
- * rejected. */
+ * rejected. From the second half of the iterations on, quad vertices are
+ * first pinned on the surface's sharp points where the quads would cut
+ * them off (pin_far_surface_vertices, sq_smooth_pin.c) and held there. */
 #include <float.h>
 #include <stdio.h>
 #include <math.h>

@@ -6,7 +6,9 @@
  * the input triangle surface (each vertex ends as a closest point: a
  * barycentric combination of one surface triangle's corners) and the
  * connectivity unchanged. Folded input quads are untangled first; after
- * that no accepted step folds a quad (robust fold test, sq_quad_fold_margin). */
+ * that no accepted step folds a quad (robust fold test, sq_quad_fold_margin).
+ * Where the quads would cut off a sharp point of the surface, a quad vertex
+ * is held on it (pin_threshold). */
 #ifndef SQ_SMOOTH_H
 #define SQ_SMOOTH_H
 
