@@ -189,10 +189,10 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before, s->t_extract);
     if (s->smoothed)
         printf("smooth        mean |angle-90| %.2f -> %.2f degrees, min angle %.1f -> %.1f, %d iterations,\n"
-               "              %.2f s\n",
+               "              %u vertices pinned on sharp points, %.2f s\n",
                s->smooth.before.angle_mean_dev_deg, s->smooth.after.angle_mean_dev_deg,
                s->smooth.before.angle_min_deg, s->smooth.after.angle_min_deg, s->smooth.iterations,
-               s->t_smooth);
+               s->smooth.pinned, s->t_smooth);
     else if (s->smooth_reverted)
         printf("smooth        not kept (%s), %.2f s\n", s->smooth_why, s->t_smooth);
     else
@@ -244,7 +244,7 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     sq_json_double(stdout, s->smooth.before.angle_mean_dev_deg);
     printf(", \"angle_mean_dev_after\": ");
     sq_json_double(stdout, s->smooth.after.angle_mean_dev_deg);
-    printf(", \"iterations\": %d, \"why\": ", s->smooth.iterations);
+    printf(", \"iterations\": %d, \"pinned\": %u, \"why\": ", s->smooth.iterations, s->smooth.pinned);
     sq_json_string(stdout, s->smooth_why);
     printf(", \"seconds\": %.6f}", s->t_smooth);
     if (surf->S.np) printf(",\n  \"export\": {\"patches\": %u, \"seconds\": %.6f}", surf->S.np, surf->seconds);
