@@ -26,7 +26,6 @@
 #define MAX_BACKTRACK 8
 #define MAX_RETRY 2         /* damped retries of a rejected outer step        */
 #define DAMPING_START 0.25  /* damping weight of the first retry             */
-#define SQ_PI 3.14159265358979323846
 #define PIN_SJAC_FLOOR 0.2  /* a pin may not take a quad's scaled Jacobian below */
 
 void sq_smooth_options_default(sq_smooth_options *o)
@@ -139,17 +138,12 @@ static void set_frames(smoother *s)
      * crosses (measured: femur's quads from quantize, with corners of 2 to
      * 7 degrees on bent quads, stalled at 10.0 degrees with Ceres rejecting
      * 41 of 56 steps; 6.4 degrees with the branch kept) */
-    s->ctx.base_angle = NULL;
-    double wa = s->ctx.wa, r[SQ_SMOOTH_MAX_RES];
-    const double *target = s->ctx.target;
-    s->ctx.wa = 1.0, s->ctx.target = NULL; /* r[k] = angle - pi/2 */
     for (uint32_t q = 0; q < s->nq; q++) {
         const double *x[4];
         for (int k = 0; k < 4; k++) x[k] = s->pos + 3 * (size_t)s->quads[4 * (size_t)q + k];
-        int ok = sq_smooth_quad_residuals(&s->ctx, q, x, r);
-        for (int k = 0; k < 4; k++) s->base_angle[4 * (size_t)q + k] = ok ? r[k] + 0.5 * SQ_PI : 0.5 * SQ_PI;
+        sq_smooth_corner_angles(x, s->ref_normal + 3 * (size_t)q, s->base_angle + 4 * (size_t)q);
     }
-    s->ctx.wa = wa, s->ctx.target = target, s->ctx.base_angle = s->base_angle;
+    s->ctx.base_angle = s->base_angle;
 }
 
 static void compute_margins(smoother *s, const double *pos)

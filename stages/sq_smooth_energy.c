@@ -52,6 +52,16 @@ static double untangle_term(const double *a, const double *b, const double *d, c
     return cosv < UNTANGLE_COS ? UNTANGLE_COS - cosv : 0.0;
 }
 
+void sq_smooth_corner_angles(const double *const x[4], const double n[3], double theta[4])
+{
+    for (int k = 0; k < 4; k++) {
+        double u[3], w[3], cr[3]; /* corner k: from the edge to k+1 to the edge to k-1 */
+        sub3(x[(k + 1) % 4], x[k], u), sub3(x[(k + 3) % 4], x[k], w), cross3(u, w, cr);
+        double th = atan2(dot3(cr, n), dot3(u, w));
+        theta[k] = th < 0.0 ? th + 2.0 * SQ_PI : th;
+    }
+}
+
 int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *const x[4], double *r)
 {
     /* Scale-invariant residuals: signed corner angles (radians, 0 at 90
@@ -67,12 +77,10 @@ int sq_smooth_quad_residuals(const sq_smooth_ctx *c, uint32_t q, const double *c
         if (!(len[k] > 0.0)) return 0;
         lmean += 0.25 * log(len[k]);
     }
+    double theta[4];
+    sq_smooth_corner_angles(x, n, theta);
     for (int k = 0; k < 4; k++) {
-        const double *u = e[k], *p = e[(k + 3) % 4]; /* corner k: from u to -p */
-        double w[3] = {-p[0], -p[1], -p[2]}, cr[3];
-        cross3(u, w, cr);
-        double th = atan2(dot3(cr, n), dot3(u, w));
-        if (th < 0.0) th += 2.0 * SQ_PI;
+        double th = theta[k];
         if (c->base_angle) { /* the branch nearest the angle at the solve's start */
             double b = c->base_angle[4 * (size_t)q + k];
             if (th > b + SQ_PI) th -= 2.0 * SQ_PI;

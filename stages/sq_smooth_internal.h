@@ -35,6 +35,11 @@ typedef struct sq_smooth_ctx {
  * target, ideal_log: 4*nq each. */
 void sq_smooth_targets(uint32_t nv, uint32_t nq, const uint32_t *quads, double *target, double *ideal_log);
 
+/* The four corner angles of quad x[0..3] measured around the normal n,
+ * in [0, 2 pi): corner k turns from its edge to x[k+1] to its edge to
+ * x[k-1] (a reflex corner is above pi). */
+void sq_smooth_corner_angles(const double *const x[4], const double n[3], double theta[4]);
+
 /* Number of residuals of quad q (9, or 13 with untangling terms). */
 uint32_t sq_smooth_residual_count(const sq_smooth_ctx *c, uint32_t q);
 
