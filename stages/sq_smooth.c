@@ -218,6 +218,7 @@ static void revert_worsened(smoother *s, const sq_quad_quality *g)
  * and the larger of PIN_SJAC_FLOOR and the untangled mesh's minimum, or the
  * mesh's mean |angle - 90| or mean edge ratio above the untangled mesh's:
  * the smoother's promise (docs/smooth.md, "Acceptance") holds with pins.
+ * A vertex of more than 16 quads is not pinned (the check's fixed arrays).
  * Returns the number of vertices pinned now, or -1 with err set. */
 static int pin_far_surface_vertices(smoother *s, sq_error *err)
 {

@@ -230,31 +230,33 @@ static void smooth_and_check(const sq_soup *surf, uint32_t nv, double *pos, uint
 
 /* The widest gap between a surface vertex and the quad surface (each quad
  * split along its shorter diagonal, as the referee does), over the
- * diagonal: brute force over all quad triangles. */
-static double widest_gap(const sq_soup *surf, const double *pos, uint32_t nq, const uint32_t *quads)
+ * diagonal: a BVH over the quads' triangles, built here (the BVH equals a
+ * brute-force scan: test_closest_point_matches_brute_force). */
+static double widest_gap(const sq_soup *surf, uint32_t nv, const double *pos, uint32_t nq, const uint32_t *quads)
 {
+    uint32_t *tri = malloc(6 * (size_t)nq * sizeof(uint32_t));
+    assert_non_null(tri);
+    for (uint32_t q = 0; q < nq; q++) {
+        const uint32_t *f = quads + 4 * (size_t)q;
+        const double *x[4] = {pos + 3 * (size_t)f[0], pos + 3 * (size_t)f[1], pos + 3 * (size_t)f[2],
+                              pos + 3 * (size_t)f[3]};
+        double d02 = 0.0, d13 = 0.0;
+        for (int k = 0; k < 3; k++)
+            d02 += (x[2][k] - x[0][k]) * (x[2][k] - x[0][k]), d13 += (x[3][k] - x[1][k]) * (x[3][k] - x[1][k]);
+        const int t[2][6] = {{0, 1, 2, 0, 2, 3}, {0, 1, 3, 1, 2, 3}};
+        for (int j = 0; j < 6; j++) tri[6 * (size_t)q + j] = f[t[d02 > d13][j]];
+    }
+    sq_cp_tree tree;
+    sq_error err;
+    assert_int_equal(sq_cp_tree_build(nv, pos, 2 * nq, tri, &tree, &err), SQ_OK);
     double worst = 0.0;
     for (uint32_t i = 0; i < surf->nv; i++) {
-        const double *p = surf->pos + 3 * (size_t)i;
-        double best = INFINITY;
-        for (uint32_t q = 0; q < nq; q++) {
-            const uint32_t *f = quads + 4 * (size_t)q;
-            const double *x[4] = {pos + 3 * (size_t)f[0], pos + 3 * (size_t)f[1], pos + 3 * (size_t)f[2],
-                                  pos + 3 * (size_t)f[3]};
-            double d02 = 0.0, d13 = 0.0;
-            for (int k = 0; k < 3; k++)
-                d02 += (x[2][k] - x[0][k]) * (x[2][k] - x[0][k]), d13 += (x[3][k] - x[1][k]) * (x[3][k] - x[1][k]);
-            int t[2][3] = {{0, 1, 2}, {0, 2, 3}};
-            if (d02 > d13) t[0][2] = 3, t[1][0] = 1;
-            for (int j = 0; j < 2; j++) {
-                double b[3], c[3];
-                sq_closest_point_triangle(p, x[t[j][0]], x[t[j][1]], x[t[j][2]], b, c);
-                double d = (c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]) + (c[2] - p[2]) * (c[2] - p[2]);
-                best = fmin(best, d);
-            }
-        }
-        worst = fmax(worst, sqrt(best));
+        sq_cp_hit hit;
+        sq_cp_tree_query(&tree, surf->pos + 3 * (size_t)i, &hit);
+        worst = fmax(worst, sqrt(hit.dist2));
     }
+    sq_cp_tree_free(&tree);
+    free(tri);
     return worst / diag_of(surf);
 }
 
@@ -334,7 +336,8 @@ static void test_pins_close_the_gap(void **state)
                 break;
             }
     assert_true(on_vertex >= on.pinned);
-    double g0 = widest_gap(&s, q0.pos, q0.nf, q0.face_idx), g1 = widest_gap(&s, q1.pos, q1.nf, q1.face_idx);
+    double g0 = widest_gap(&s, q0.nv, q0.pos, q0.nf, q0.face_idx);
+    double g1 = widest_gap(&s, q1.nv, q1.pos, q1.nf, q1.face_idx);
     print_message("bunny: widest gap %.5f without pins, %.5f with %u pins\n", g0, g1, on.pinned);
     assert_true(g1 < g0);
     sq_soup_free(&s), sq_soup_free(&q0), sq_soup_free(&q1);
