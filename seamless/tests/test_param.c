@@ -684,10 +684,27 @@ static const char *models[] = {"mpz/block",   "mpz/cup",        "mpz/elk",      
                                "mpz/holes3",  "mpz/homer",      "mpz/knot1",    "mpz/rocker_arm",
                                "mpz/sculpt",  "mpz/trim-star",  "cid/elephant"};
 
+/* Under the sanitizers only the models whose maps the referee reads in CI
+ * (the plain build runs all 15; the rest cost about 150 s of ASan time and
+ * end at the Steiner budget or at the referee's size limit). */
+static int sanitizer_subset(const char *name)
+{
+#if defined(__SANITIZE_ADDRESS__)
+    static const char *keep[] = {"mpz/cup", "mpz/helmet", "mpz/holes3", "mpz/knot1"};
+    for (size_t i = 0; i < sizeof keep / sizeof *keep; i++)
+        if (!strcmp(name, keep[i])) return 1;
+    return 0;
+#else
+    (void)name;
+    return 1;
+#endif
+}
+
 static void test_all_models_compatible(void **state)
 {
     (void)state;
     for (size_t i = 0; i < sizeof models / sizeof *models; i++) {
+        if (!sanitizer_subset(models[i])) continue;
         model M;
         load(&M, models[i]);
         sq_param P;
