@@ -55,6 +55,11 @@ static void help(FILE *f)
             "The independent referee ../shared/tools/check_param.py MESH CONES OUT.obj\n"
             "--integer checks the same.\n"
             "\n"
+            "Where cones touch (a ring of adjacent cones around a handle, a vertex walled\n"
+            "in by cones) the cut graph's loops cannot pass between them; then every\n"
+            "input edge between two cones is split at its midpoint and the attempts run\n"
+            "again (seed 9.1; --json \"cone_splits\").\n"
+            "\n"
             "The mesh and cones are validated first, as by seamquad check: closed,\n"
             "manifold, connected, oriented, no degenerate face; the cone file matches\n"
             "the mesh; Gauss-Bonnet (sum of 4 - k = 4 * Euler characteristic); no\n"
@@ -86,6 +91,13 @@ static void help(FILE *f)
             "                      overlay and the simplification use two threads too,\n"
             "                      and the final check runs beside the writing of the\n"
             "                      outputs (renamed into place only once it passed)\n"
+            "  --max-memory SIZE   memory an attempt may plan for (default 2G; K, M, G\n"
+            "                      suffixes) in the steps whose size the input does not\n"
+            "                      bound: Q triangulated by the tree's splits, Omega's\n"
+            "                      disk map and the overlay's crossings (at most SIZE /\n"
+            "                      %u); an attempt that would need more fails before it\n"
+            "                      allocates, naming the limit, and the next one runs;\n"
+            "                      with --threads 2 two attempts may run at once\n"
             "  --guide MODE        geometric guidance (seed 9.2): auto (default) is on for\n"
             "                      genus >= 2, off below. on: the cut surface is laid out\n"
             "                      in the unit disk; the cones are taken from its centre\n"
@@ -203,7 +215,7 @@ static void help(FILE *f)
             "      --svg helmet.uv.svg --domain-svg helmet.omega.svg\n"
             "  python3 ../shared/tools/check_param.py ../shared/data/mpz/helmet.obj \\\n"
             "      ../shared/data/mpz/helmet_Th_hat helmet.param.obj --integer\n",
-            SQ_PARAM_CLI_ATTEMPTS, SQ_PARAM_REFINE);
+            SQ_PARAM_CLI_ATTEMPTS, SQ_BYTES_PER_CROSSING, SQ_PARAM_REFINE);
 }
 
 typedef struct progress_state {
@@ -332,6 +344,7 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
            s->tree_pair ? "true" : "false");
     printf("  \"tree_qtri\": %s,\n  \"qtri_verts\": %u,\n  \"qtri_steiner\": %u,\n  \"wall_splits\": %u,\n",
            s->tree_qtri ? "true" : "false", s->qtri_verts, s->qtri_steiner, s->wall_splits);
+    printf("  \"cone_splits\": %u,\n", s->cone_splits);
     printf("  \"fallback\": %s,\n  \"replaced_cells\": %s,\n  \"crossings\": %llu,\n  \"fan_vertices\": %u,\n",
            s->fallback ? "true" : "false", s->replaced_cells ? "true" : "false", (unsigned long long)s->crossings,
            s->fan_vertices);
@@ -406,6 +419,10 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
            (unsigned long long)s->quads_unpadded, (unsigned long long)s->quads_added,
            (unsigned long long)(s->quads_unpadded + s->quads_added));
     printf("cone tree      %u edges in %u segments\n", s->tree_edges, s->tree_segments);
+    if (s->cone_splits)
+        printf("cone splits    %u input edges between two cones split at their midpoints: the cut graph's\n"
+               "               loops and paths pass between adjacent cones (seed 9.1)\n",
+               s->cone_splits);
     if (s->wall_splits)
         printf("walls          %u input edges split at their midpoints: the cut walled a cone in\n", s->wall_splits);
     if (s->overlay)
@@ -469,6 +486,31 @@ static int u64_option(const char *name, const char *arg, unsigned long long lo, 
         fprintf(stderr, "seamquad param: %s needs a non-negative integer, got '%s'\n", name, arg);
     else
         fprintf(stderr, "seamquad param: %s needs an integer from %llu to %llu, got '%s'\n", name, lo, hi, arg);
+    return 0;
+}
+
+/* A size in bytes with an optional suffix K, M or G (powers of 1024),
+ * from 64M to 1024G, or a message naming the option (0 returned). */
+static int size_option(const char *name, const char *arg, unsigned long long *out)
+{
+    char num[32];
+    size_t n = strlen(arg);
+    unsigned long long mul = 1, v = 0;
+    if (n > 0 && n < sizeof num) {
+        memcpy(num, arg, n + 1);
+        char c = num[n - 1];
+        if (c == 'K' || c == 'k') mul = 1ull << 10;
+        else if (c == 'M' || c == 'm') mul = 1ull << 20;
+        else if (c == 'G' || c == 'g') mul = 1ull << 30;
+        if (mul > 1) num[n - 1] = 0;
+    }
+    if (n > 0 && n < sizeof num && parse_u64(num, 1, (1024ull << 30) / mul, &v) && v * mul >= (64ull << 20) &&
+        v * mul <= (1024ull << 30)) {
+        *out = v * mul;
+        return 1;
+    }
+    fprintf(stderr, "seamquad param: %s needs a size from 64M to 1024G (bytes, or a number with K, M or G), got '%s'\n",
+            name, arg);
     return 0;
 }
 
@@ -543,6 +585,7 @@ int sq_cmd_param(int argc, char **argv)
     int json = 0, quiet = 0;
     const char *diagnose = NULL;
     unsigned long long seed = 1, attempts = SQ_PARAM_CLI_ATTEMPTS, refine = SQ_PARAM_REFINE, max_steiner = 0;
+    unsigned long long max_memory = SQ_PARAM_MAX_MEMORY;
     unsigned long long max_crossings = 0, variants = SQ_VARIANTS, variant_gate = SQ_VARIANT_PER_FACE;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     unsigned long long threads = ncpu > 1 ? 2 : 1;
@@ -578,6 +621,8 @@ int sq_cmd_param(int argc, char **argv)
             if (!u64_option(a, argv[++i], 1, 64, &threads)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--refine") && has) {
             if (!u64_option(a, argv[++i], 0, 64, &refine)) return SQ_EXIT_USAGE;
+        } else if (!strcmp(a, "--max-memory") && has) {
+            if (!size_option(a, argv[++i], &max_memory)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--max-steiner") && has) {
             if (!u64_option(a, argv[++i], 1, 1000000000ull, &max_steiner)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--max-crossings") && has) {
@@ -647,6 +692,7 @@ int sq_cmd_param(int argc, char **argv)
     opt.threads = (uint32_t)threads;
     opt.refine = (uint32_t)refine;
     opt.max_steiner = max_steiner;
+    opt.max_memory = max_memory;
     opt.max_crossings = max_crossings;
     opt.guidance = guidance;
     opt.tree = tree;

@@ -129,14 +129,14 @@ sq_status sq_cut_loops_find(const sq_mesh *m, const uint8_t *cone, const sq_cut_
                         st = sq_error_set(err, SQ_ERR_ARGUMENT,
                                           "cut graph: vertex %u is walled in by cones (e.g. "
                                           "cone edge %u-%u); the cut needs an edge split "
-                                          "(Steiner vertex, seed 9.1), not implemented",
+                                          "(Steiner vertex, seed 9.1; sq_param_build makes it)",
                                           unreached, a, c);
                     else
                         st = sq_error_set(err, SQ_ERR_ARGUMENT,
                                           "cut graph: adjacent cones (e.g. edge %u-%u) form a "
                                           "ring that blocks loops (%u tree-cotree generators, "
                                           "expected %u); the cut needs an edge split (Steiner "
-                                          "vertex, seed 9.1), not implemented",
+                                          "vertex, seed 9.1; sq_param_build makes it)",
                                           a, c, left, 2 * g);
                     goto done;
                 }

@@ -146,7 +146,7 @@ static sq_status build_genus0(const sq_mesh *m, const uint8_t *cone, uint64_t se
         st = sq_error_set(err, SQ_ERR_ARGUMENT,
                           "cut graph: no path of 2 edges avoids the cones (non-cone vertex %u "
                           "is walled in, e.g. by cone edge %u-%u); the cut needs an edge "
-                          "split (Steiner vertex, seed 9.1), not implemented",
+                          "split (Steiner vertex, seed 9.1; sq_param_build makes it)",
                           walled, a, b);
         goto done;
     }
@@ -353,8 +353,8 @@ static sq_status build_theta(const sq_mesh *m, const uint8_t *cone, const sq_cut
         st = sq_error_set(err, SQ_ERR_ARGUMENT,
                           "cut graph: no cone-free path crosses the loop of the torus from "
                           "one side to the other (adjacent cones wall it off, e.g. edge "
-                          "%u-%u); the cut needs an edge split (Steiner vertex, seed 9.1), "
-                          "not implemented",
+                          "%u-%u); the cut needs an edge split (Steiner vertex, seed 9.1; "
+                          "sq_param_build makes it)",
                           p, q);
         goto done;
     }

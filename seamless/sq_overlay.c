@@ -539,20 +539,23 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
 
 /* Where to split B's faces between the two ranges so that both walks take
  * about as long: every SPLIT_STRIDE-th face walked on its own first (a
- * sample, about 1/16 of the work, without budget; its tables thrown away),
- * the split where the sample's triangles reach half. Any split gives the
- * same overlay (see below); the faces' halves by count left one range with
- * twice the other's work on cid/elephant (1.44 s against 0.87 s). proto: a
- * range as set up, nothing walked or allocated yet. Falls back to the
- * middle. *sample_nx: the sample's crossings (0 if it failed). */
-static uint32_t balanced_split(const ov *proto, uint32_t *sample_nx)
+ * sample, about 1/16 of the work; its tables thrown away), the split where
+ * the sample's triangles reach half. Any split gives the same overlay (see
+ * below); the faces' halves by count left one range with twice the other's
+ * work on cid/elephant (1.44 s against 0.87 s). proto: a range as set up,
+ * nothing walked or allocated yet. Falls back to the middle. *sample_nx:
+ * the sample's crossings (0 if it failed). cap (0: none): the sample stops
+ * once it has more crossings (*over = 1), so that its memory is bounded by
+ * the caller's budget: the whole walk makes every crossing the sample
+ * makes, so it would exceed the same budget. */
+static uint32_t balanced_split(const ov *proto, uint64_t cap, uint32_t *sample_nx, int *over)
 {
     const uint32_t nf = proto->B->nf, ns = (nf + SPLIT_STRIDE - 1) / SPLIT_STRIDE;
     assert(!proto->X && !proto->hkey && !proto->loc);
     sq_overlay T;
     sq_overlay_init(&T);
     ov d = *proto;
-    d.X = &T, d.g0 = 0, d.g1 = nf, d.stride = SPLIT_STRIDE, d.max_crossings = 0, d.limit = NULL;
+    d.X = &T, d.g0 = 0, d.g1 = nf, d.stride = SPLIT_STRIDE, d.max_crossings = cap, d.limit = NULL;
     d.loc = malloc((size_t)d.nv * sizeof *d.loc);
     d.bary = malloc(3 * (size_t)d.nv * sizeof *d.bary);
     d.work = calloc((size_t)ns + 1, sizeof *d.work);
@@ -565,10 +568,24 @@ static uint32_t balanced_split(const ov *proto, uint32_t *sample_nx)
         while (d.st == SQ_OK && split < ns && 2 * (run + d.work[split]) <= total) run += d.work[split++];
         split *= SPLIT_STRIDE;
     }
+    *over = d.st == SQ_OK && d.stop_g != SQ_NONE;
     *sample_nx = d.st == SQ_OK ? T.nx : 0;
     free(d.loc), free(d.bary), free(d.work), free(d.hkey), free(d.hval);
     sq_overlay_free(&T);
     return split > 0 && split < nf ? split : nf / 2;
+}
+
+/* The sample's cap (balanced_split; 0: none): the budget as it stands, and
+ * where the expectation is checked against it (check_expected), the
+ * sample's count beyond which the check refuses anyway. Not max_expected
+ * itself: callers rank the expectations above it (the domain variants). */
+static uint64_t sample_cap(uint64_t max_crossings, uint64_t max_expected, const _Atomic uint64_t *limit)
+{
+    uint64_t cap = budget_now(max_crossings, limit);
+    const uint64_t L = limit ? atomic_load(limit) : 0, b = max_expected ? cap : L;
+    const uint64_t e = b ? (b + b / 4) / (SPLIT_STRIDE / 2) + 1 : 0;
+    if (e && (!cap || e < cap)) cap = e;
+    return cap;
 }
 
 /* Two ranges of B's faces, [0, s) and [s, nf) (s from balanced_split,
@@ -611,10 +628,21 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
     /* the sample (with one thread too: the same result, the same
      * expectation) */
     uint32_t sample_nx = 0;
-    c[0].g0 = 0, c[0].g1 = c[1].g0 = B->nf >= 2 * SPLIT_STRIDE ? balanced_split(&c[0], &sample_nx) : B->nf / 2;
+    int over = 0;
+    c[0].g0 = 0,
+    c[0].g1 = c[1].g0 = B->nf >= 2 * SPLIT_STRIDE ? balanced_split(&c[0], sample_cap(max_crossings, max_expected, limit),
+                                                                    &sample_nx, &over)
+                                                   : B->nf / 2;
     c[1].g1 = B->nf;
     const uint64_t expected = (uint64_t)sample_nx * (SPLIT_STRIDE / 2);
     out->expected = expected;
+    if (over) /* the sample stopped at its cap: expected is a lower bound */
+        return sq_error_set(err, SQ_ERR_SOLVER,
+                            "overlay: at least %llu crossings of surface and domain edges expected, more than a "
+                            "budget of %llu allows (a sample of every %u-th domain triangle alone made %u before "
+                            "it stopped): the two disk maps differ too much",
+                            (unsigned long long)expected, (unsigned long long)budget_now(max_crossings, limit),
+                            SPLIT_STRIDE, sample_nx);
     sq_status st = check_expected(expected, sample_nx, max_crossings, max_expected, limit, err);
     if (st) return st;
     c[0].X = out, c[1].X = &X1;

@@ -130,7 +130,35 @@ typedef struct sq_param_options {
      * max_crossings given. */
     uint32_t variants;
     uint32_t variant_gate;
+    /* Memory an attempt may plan for (bytes; 0: SQ_PARAM_MAX_MEMORY) in
+     * the steps whose size the input does not bound: the domain Q may have
+     * max_memory / SQ_BYTES_PER_DOMAIN_QUAD quads, Q triangulated by tree
+     * qtri's paths max_memory / SQ_BYTES_PER_QTRI_FACE triangles, Omega
+     * triangulated for the overlay max_memory / SQ_BYTES_PER_DISK_TRIANGLE
+     * (checked before its disk map is factored), the overlay (step 7')
+     * max_memory / SQ_BYTES_PER_CROSSING crossings (its sample refuses a
+     * walk that would not fit before the walk's arrays grow); beyond, the
+     * attempt fails (SQ_ERR_SOLVER) with a message naming the limit, and
+     * the next attempt runs. With threads >= 2 two attempts may run at
+     * once, each within the limit. */
+    uint64_t max_memory;
 } sq_param_options;
+
+/* 2 GiB, and the cost per item of the steps it bounds, measured on the
+ * largest runs and rounded up: a run whose overlay makes N crossings peaks
+ * at about 260 N bytes (cid/elephant: 804 MB at 3.09 million), and each
+ * of the walk's two ranges may reach the budget alone, hence 500; tree
+ * qtri's Q triangulated into F triangles, about 400 F (vmas/neptune with
+ * its field's cones: 7.6 GB at 19.9 million); Omega's disk map of T
+ * triangles and a domain of N quads: vmas/neptune passed 5.7 GB at 17.1
+ * million triangles from about 4.3 million quads, still factoring, so
+ * 450 per triangle and 2,000 per quad (the shared models' domains have at
+ * most 72,000 quads; cid/elephant's Omega disk map has 84,672 triangles) */
+#define SQ_PARAM_MAX_MEMORY (2ull << 30)
+#define SQ_BYTES_PER_CROSSING 500u
+#define SQ_BYTES_PER_QTRI_FACE 400u
+#define SQ_BYTES_PER_DISK_TRIANGLE 450u
+#define SQ_BYTES_PER_DOMAIN_QUAD 2000u
 
 /* SQ_INTERIOR_OVERLAY triangulates Omega in its unit squares, and where
  * that fails in its chords' rectangles; SQ_INTERIOR_OVERLAY_CHORDS the
@@ -255,6 +283,15 @@ typedef struct sq_param_stats {
     uint32_t wall_splits;                   /* tree qtri: input edges split   */
                                             /* at their midpoints where the   */
                                             /* cut walled a cone in (0: none) */
+    uint32_t cone_splits;                   /* input edges between two cones  */
+                                            /* split at their midpoints so    */
+                                            /* that the cut graph's loops and */
+                                            /* paths pass between them (seed  */
+                                            /* 9.1; 0: none needed)           */
+    int cut_needs_split;                    /* 1: the cut graph failed for    */
+                                            /* want of an edge split (a ring  */
+                                            /* of adjacent cones, a narrow    */
+                                            /* passage)                       */
     uint32_t fan_vertices;                  /* overlay: added by the graded   */
                                             /* fans (sq_param_grade_fans)     */
     double refinement_max_dist;             /* the largest distance of an     */

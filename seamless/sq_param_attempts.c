@@ -239,24 +239,16 @@ static uint32_t fallback_index(uint32_t a, uint32_t first, uint32_t nfb)
     return a > first && a < first + nfb ? a - first : SQ_NONE;
 }
 
-sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                         sq_param *out, sq_param_stats *stats, sq_error *err)
+/* The attempts of sq_param_build on m (the input, or the input with
+ * edges between cones split), with their fallback, in the order below;
+ * stats->cut_needs_split is set where any attempt's cut graph failed for
+ * want of an edge split. */
+static sq_status build_attempts(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                                sq_param *out, sq_param_stats *stats, sq_error *err)
 {
-    double t_start = sq_now();
-    sq_error local_err;
-    if (!err) err = &local_err;
-    sq_param_options o;
-    if (opt) o = *opt;
-    else sq_param_options_default(&o);
+    const sq_param_options o = *opt;
     const uint32_t n = o.attempts ? o.attempts : 1;
-    sq_param_stats local;
-    if (!stats) stats = &local;
-    memset(stats, 0, sizeof *stats);
-    stats->verts_in = m->nv, stats->faces_in = m->nf;
-    /* the input's cone set, once for every attempt */
-    sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
-    if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
-    if (st) return st;
+    sq_status st;
     /* SQ_TREE_ALTERNATE with guidance (genus >= 2, or genus 1 with
      * SQ_GUIDE_ON): each seed twice, the surface tree, then Q's tree */
     const int alternate = sq_param_uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
@@ -335,8 +327,75 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
             sq_error_set(err, SQ_ERR_SOLVER, "%s", msg);
         }
     }
+    if (st == SQ_ERR_SOLVER)
+        for (uint32_t a = 0; a < total; a++) stats->cut_needs_split |= jobs[a].stats.cut_needs_split;
     for (uint32_t a = 0; a < total; a++) sq_param_free(&jobs[a].out);
     free(jobs);
+    return st;
+}
+
+/* Seed 9.1: "edges between two singular vertices are split to enable
+ * loops passing between them". Only where the attempts on the input
+ * failed for want of it (a ring of adjacent cones around a handle, a
+ * non-cone vertex walled in by cones): every edge between two cones gets
+ * its midpoint (sq_param_split_walls, no cut), the attempts run again on
+ * that mesh, and the map is expressed on the input (its vertices first,
+ * the midpoints among the Steiner vertices, each face naming its input
+ * face). Elsewhere the maps stay as they were. */
+static sq_status build_split_cones(const sq_mesh *m, const int32_t *valence, const sq_param_options *o,
+                                   sq_param *out, sq_param_stats *stats, sq_error *err)
+{
+    sq_mesh m2;
+    int32_t *val2 = NULL;
+    uint32_t *fparent = NULL, nsplit = 0;
+    sq_error e2;
+    sq_error_clear(&e2);
+    sq_status s2 = sq_param_split_walls(m, valence, NULL, &m2, &val2, &fparent, NULL, &nsplit, &e2);
+    if (s2 == SQ_ERR_NOMEM) {
+        *err = e2;
+        return s2;
+    }
+    if (s2 || !nsplit) return SQ_ERR_SOLVER; /* nothing to split: the first failure stands */
+    char first[sizeof err->msg];
+    snprintf(first, sizeof first, "%s", err->msg);
+    sq_status st = build_attempts(&m2, val2, o, out, stats, err);
+    stats->verts_in = m->nv, stats->faces_in = m->nf, stats->cone_splits = nsplit, stats->cut_needs_split = 1;
+    if (st == SQ_OK) {
+        out->nv_input = m->nv;
+        for (uint32_t f = 0; f < out->nf; f++) out->tri_in[f] = fparent[out->tri_in[f]];
+    } else if (st == SQ_ERR_SOLVER) {
+        char msg[3 * sizeof err->msg];
+        snprintf(msg, sizeof msg, "%s; with the %u edges between two cones split (seed 9.1): %s", first, nsplit,
+                 err->msg);
+        sq_error_set(err, st, "%s", msg);
+    }
+    sq_mesh_free(&m2);
+    free(val2), free(fparent);
+    return st;
+}
+
+sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
+                         sq_param *out, sq_param_stats *stats, sq_error *err)
+{
+    double t_start = sq_now();
+    sq_error local_err;
+    if (!err) err = &local_err;
+    sq_param_options o;
+    if (opt) o = *opt;
+    else sq_param_options_default(&o);
+    sq_param_stats local;
+    if (!stats) stats = &local;
+    memset(stats, 0, sizeof *stats);
+    stats->verts_in = m->nv, stats->faces_in = m->nf;
+    /* the input's cone set, once for every attempt */
+    sq_status st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
+    if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
+    if (st) return st;
+    st = build_attempts(m, valence, &o, out, stats, err);
+    if (st == SQ_ERR_SOLVER && stats->cut_needs_split) {
+        sq_status s2 = build_split_cones(m, valence, &o, out, stats, err);
+        if (s2 != SQ_ERR_SOLVER || stats->cone_splits) st = s2;
+    }
     if (st == SQ_OK && o.simplify != SQ_SIMPLIFY_OFF && !o.allow_flips) {
         double t = sq_now();
         if (o.progress) o.progress(o.progress_ctx, "simplify", 0.95);

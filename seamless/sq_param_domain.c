@@ -521,6 +521,7 @@ sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *
                                   cst.failure == SQ_CUT_FAIL_NEEDS_SPLIT)) {
         st = SQ_ERR_SOLVER;
         if (err) err->code = st;
+        if (st_out) st_out->cut_needs_split = 1;
     }
     if (st) goto done;
     if (genus >= 2) st = steer_cut(c, valence, st_out);
@@ -560,6 +561,20 @@ sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *
     if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     if (st_out) st_out->quads_unpadded = c->D->quads_unpadded, st_out->quads_added = c->D->quads_added;
+    {   /* the memory limit: Omega, the cone tree and the interior map grow
+         * with Q (sq_param_options.max_memory) */
+        const uint64_t max_memory = c->opt->max_memory ? c->opt->max_memory : SQ_PARAM_MAX_MEMORY;
+        const uint64_t nq = c->D->quads_unpadded + c->D->quads_added;
+        if (nq > max_memory / SQ_BYTES_PER_DOMAIN_QUAD) {
+            st = sq_error_set(err, SQ_ERR_SOLVER,
+                              "domain: Q has %llu quads (%llu of padding); Omega and the interior map would need "
+                              "about %llu MB, more than the memory limit of %llu MB (--max-memory)",
+                              (unsigned long long)nq, (unsigned long long)c->D->quads_added,
+                              (unsigned long long)((nq * SQ_BYTES_PER_DOMAIN_QUAD) >> 20),
+                              (unsigned long long)(max_memory >> 20));
+            goto done;
+        }
+    }
     c->k = c->D->k;
     st = sq_cut_graph_domain_offset(&c->G, &c->D->pattern, &c->r, err);
     if (st == SQ_OK && c->step_vertex && genus == 1) st = align_genus1(c, val, nc, &dopt);

@@ -77,14 +77,17 @@ sq_status sq_param_disk_tutte(uint32_t nf, const uint32_t *tri, const uint32_t *
 sq_status sq_param_grade_fans(uint32_t nbl, uint32_t min_run, const uint32_t *twin, uint32_t *nf, uint32_t **tri,
                               uint32_t **fin, uint32_t *nv, double **p3, uint32_t *added, sq_error *err);
 
-/* Tree qtri where the cut walls a cone in (sq_param_walls.c): m with a
- * midpoint on every edge that joins two blocked vertices (cones,
- * valence[v] != 4, and the vertices of the cut he_cut) and is not cut,
- * its faces split to match (two, three or four per face). m2's first
- * m->nv vertices are m's; *val2 (m2->nv): the valences, 4 at the
+/* Edge splits between blocked vertices (sq_param_walls.c): m with a
+ * midpoint on every edge that joins two blocked vertices and is not cut,
+ * its faces split to match (two, three or four per face). Blocked: cones
+ * (valence[v] != 4) and, where he_cut is given, the vertices of the cut
+ * (tree qtri where the cut walls a cone in); with he_cut NULL, cones only
+ * (seed 9.1: the cut graph's loops pass between adjacent cones). m2's
+ * first m->nv vertices are m's; *val2 (m2->nv): the valences, 4 at the
  * midpoints; *fparent (m2->nf): m's face holding each face; *cut2
- * (m2->nh): the same cut. *nsplit: the edges split (0: none, and nothing
- * allocated). The caller frees m2 and the three arrays. */
+ * (m2->nh; only with he_cut and cut2): the same cut. *nsplit: the edges
+ * split (0: none, and nothing allocated). The caller frees m2 and the
+ * arrays. */
 sq_status sq_param_split_walls(const sq_mesh *m, const int32_t *valence, const uint8_t *he_cut, sq_mesh *m2,
                                int32_t **val2, uint32_t **fparent, uint8_t **cut2, uint32_t *nsplit,
                                sq_error *err);

@@ -9,6 +9,7 @@
  * chords, no cells. Fills P. */
 #include <math.h>
 #include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -229,6 +230,16 @@ static sq_status omega_disk_build(ctx *c, const surface_disk *A, const uint32_t 
     const uint32_t nv = B->nv, *btri = B->bt.t;
     const double *buv = B->buv;
     uint32_t nbt = B->bt.n;
+    /* the memory limit, before the disk map's factorization */
+    const uint64_t max_memory = c->opt->max_memory ? c->opt->max_memory : SQ_PARAM_MAX_MEMORY;
+    if ((uint64_t)nbt > max_memory / SQ_BYTES_PER_DISK_TRIANGLE) {
+        st = sq_error_set(err, SQ_ERR_SOLVER,
+                          "overlay: Omega triangulated has %u triangles; its disk map would need about %llu MB, "
+                          "more than the memory limit of %llu MB (--max-memory)",
+                          nbt, (unsigned long long)(((uint64_t)nbt * SQ_BYTES_PER_DISK_TRIANGLE) >> 20),
+                          (unsigned long long)(max_memory >> 20));
+        goto done;
+    }
     for (uint32_t g = 0; g < nbt; g++)
         if (sq_orient2d(buv + 2 * (size_t)btri[3 * g], buv + 2 * (size_t)btri[3 * g + 1], buv + 2 * (size_t)btri[3 * g + 2]) <= 0) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "overlay: Omega's triangle %u is not positively oriented", g);
@@ -384,9 +395,14 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
     sq_overlay_mesh Am = {A->nf, A->tri, A->twin}, Bm = {B.bt.n, B.bt.t, B.btw};
     progress(c, "overlay", 0.75);
     /* in two threads where the caller allows them (the same result) */
-    const uint64_t budget = c->opt->max_crossings ? c->opt->max_crossings
-                            : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
-                                                  : steiner_budget(c);
+    uint64_t budget = c->opt->max_crossings ? c->opt->max_crossings
+                      : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
+                                            : steiner_budget(c);
+    /* the memory limit, checked by the sample before the walk allocates */
+    const uint64_t max_memory = c->opt->max_memory ? c->opt->max_memory : SQ_PARAM_MAX_MEMORY;
+    const uint64_t mem_cap = max_memory / SQ_BYTES_PER_CROSSING;
+    const int by_memory = mem_cap < budget;
+    if (by_memory) budget = mem_cap;
     /* given up at once where the sample expects a quarter more than the
      * budget (the overlay's rule) or more than the variants' gate; a
      * failure counts as the gate's where the gate is below the former */
@@ -394,6 +410,12 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
                                   c->opt->threads ? c->opt->threads : 1, c->cancel, c->limit, &X, c->err);
     stats->crossings_expected = X.expected;
     stats->gated = st == SQ_ERR_SOLVER && c->gate && c->gate < budget + budget / 4 && X.expected > c->gate;
+    if (st == SQ_ERR_SOLVER && by_memory && !stats->gated && !cancelled(c) && c->err) {
+        char msg[2 * sizeof c->err->msg];
+        snprintf(msg, sizeof msg, "%s (the memory limit: %llu MB allow %llu crossings; --max-memory)", c->err->msg,
+                 (unsigned long long)(max_memory >> 20), (unsigned long long)mem_cap);
+        sq_error_set(c->err, st, "%s", msg);
+    }
     if (cancelled(c)) st = stop_if_cancelled(c);
     if (st) goto done;
     stats->crossings = X.nx;

@@ -1,5 +1,7 @@
-/* seamquad: room for the surface cone tree where the cut walls a cone in
- * (tree qtri, seed 9.4; sq_param.c). See sq_param_internal.h. */
+/* seamquad: edge splits between blocked vertices: room for the surface
+ * cone tree where the cut walls a cone in (tree qtri, seed 9.4;
+ * sq_param.c), and room for the cut graph's loops and paths between
+ * adjacent cones (seed 9.1; sq_param_attempts.c). See sq_param_internal.h. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,7 +24,8 @@ sq_status sq_param_split_walls(const sq_mesh *m, const int32_t *valence, const u
                                sq_error *err)
 {
     memset(m2, 0, sizeof *m2);
-    *val2 = NULL, *fparent = NULL, *cut2 = NULL, *nsplit = 0;
+    *val2 = NULL, *fparent = NULL, *nsplit = 0;
+    if (cut2) *cut2 = NULL;
     sq_status st = SQ_OK;
     uint8_t *blocked = calloc(m->nv, 1);
     uint32_t *mid = malloc((size_t)m->nh * sizeof *mid);
@@ -34,13 +37,13 @@ sq_status sq_param_split_walls(const sq_mesh *m, const int32_t *valence, const u
     }
     /* the vertices the surface tree may not pass: cones and the cut's */
     for (uint32_t v = 0; v < m->nv; v++) blocked[v] = valence[v] != 4;
-    for (uint32_t h = 0; h < m->nh; h++)
+    for (uint32_t h = 0; he_cut && h < m->nh; h++)
         if (he_cut[h]) blocked[m->he_vert[h]] = 1;
     /* a midpoint on every other edge between two of them */
     uint32_t n = 0;
     for (uint32_t h = 0; h < m->nh; h++) {
         uint32_t t = m->he_twin[h], a = m->he_vert[h], b = m->he_vert[t];
-        if (h < t) mid[h] = mid[t] = !he_cut[h] && blocked[a] && blocked[b] ? m->nv + n++ : SQ_NONE;
+        if (h < t) mid[h] = mid[t] = !(he_cut && he_cut[h]) && blocked[a] && blocked[b] ? m->nv + n++ : SQ_NONE;
     }
     *nsplit = n;
     if (!n) goto done;
@@ -98,15 +101,15 @@ sq_status sq_param_split_walls(const sq_mesh *m, const int32_t *valence, const u
     st = sq_mesh_from_soup(&soup, 0, m2, err);
     if (st) goto done;
     *val2 = malloc((size_t)m2->nv * sizeof **val2);
-    *cut2 = calloc(m2->nh, 1);
-    if (!*val2 || !*cut2) {
+    if (cut2) *cut2 = calloc(m2->nh, 1);
+    if (!*val2 || (cut2 && !*cut2)) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
     memcpy(*val2, valence, (size_t)m->nv * sizeof **val2);
     for (uint32_t v = m->nv; v < m2->nv; v++) (*val2)[v] = 4;
     /* the cut: the same edges (none was split) */
-    for (uint32_t h = 0; h < m->nh && st == SQ_OK; h++) {
+    for (uint32_t h = 0; he_cut && cut2 && h < m->nh && st == SQ_OK; h++) {
         if (!he_cut[h]) continue;
         uint32_t g = find_he(m2, m->he_vert[h], m->he_vert[m->he_twin[h]]);
         if (g == SQ_NONE) st = sq_error_set(err, SQ_ERR_INTERNAL, "split walls: cut edge %u lost", h);
@@ -117,8 +120,9 @@ done:
     sq_soup_free(&soup);
     if (st) {
         sq_mesh_free(m2);
-        free(*val2), free(*fparent), free(*cut2);
-        *val2 = NULL, *fparent = NULL, *cut2 = NULL;
+        free(*val2), free(*fparent);
+        *val2 = NULL, *fparent = NULL;
+        if (cut2) free(*cut2), *cut2 = NULL;
     }
     return st;
 }

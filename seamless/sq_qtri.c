@@ -474,6 +474,11 @@ sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, co
             }
             if (!is_root) cone_free[T->cone[j]] = 0;
             T->splits += S->nv - nv0;
+            if (st == SQ_OK && T->max_faces && S->nf > T->max_faces)
+                st = sq_error_set(err, SQ_ERR_SOLVER,
+                                  "tree qtri: the tree's paths split Q triangulated into %u triangles (%llu "
+                                  "Steiner vertices) by step %u of %u, more than the memory limit allows (%llu; --max-memory)",
+                                  S->nf, (unsigned long long)T->splits, j, n, (unsigned long long)T->max_faces);
             if (st == SQ_ERR_INTERNAL && err) { /* name the step */
                 char why[sizeof err->msg];
                 memcpy(why, err->msg, sizeof why);

@@ -66,6 +66,8 @@ typedef struct sq_qtri {
                          /* the side's faces to its left                   */
     uint32_t root_pos;   /* its index on that side (sq_domain_side_vertices) */
     uint64_t splits;     /* Steiner vertices made by the tree              */
+    uint64_t max_faces;  /* the replication fails (SQ_ERR_SOLVER) once S   */
+                         /* has more faces (a memory limit; 0: none)       */
 } sq_qtri;
 
 void sq_qtri_init(sq_qtri *T);

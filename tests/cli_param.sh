@@ -372,6 +372,21 @@ expect "--fallback off (genus 2)" 3 "Steiner vertices" -- "$shared/data/mpz/eigh
   --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/e/x.obj" --attempts 1 --max-steiner 50 --fallback off
 expect "--max-steiner 10" 3 "more than 10 Steiner vertices" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
   --max-steiner 10 --attempts 1 --fallback off
+for v in 0 10M 2T abc -1; do
+  expect "bad --max-memory $v" 2 "max-memory needs a size" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-memory "$v"
+done
+# a memory limit the overlay cannot keep: refused by its sample before the
+# walk allocates, the message naming the limit (fertility_tri's fallback
+# expects about 1.6 million crossings; 64M allow 134,217)
+if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
+  expect "--max-memory 64M (overlay)" 3 "the memory limit: 64 MB allow 134217 crossings" -- \
+    "$shared/data/mpz/fertility_tri.obj" --cones "$shared/data/mpz/fertility_tri_Th_hat" -o "$tmp/e/x.obj" \
+    --attempts 1 --max-memory 64M
+  # the domain checked as soon as it is built: elephant's Q (73,504 quads)
+  expect "--max-memory 64M (domain)" 3 "domain: Q has 73504 quads (10904 of padding); Omega and the interior map would need about 140 MB, more than the memory limit of 64 MB" -- \
+    "$shared/data/cid/elephant.obj" --cones "$shared/data/cid/elephant_Th_hat" -o "$tmp/e/x.obj" \
+    --attempts 1 --max-memory 64M
+fi
 expect "bad --guide" 2 "guide" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --guide sometimes
 expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --tree random
 # a crossing budget the overlay cannot keep: a clean failure that names it

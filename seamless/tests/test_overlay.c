@@ -158,6 +158,17 @@ static uint32_t check_pair(uint32_t n)
             assert_null(Y.tri);
             assert_true(Y.expected == X.expected);
         }
+        /* a budget below the sample's own crossings: the sample stops at
+         * it (its memory bounded by the budget) and the call fails at once,
+         * as the whole walk, which makes every crossing the sample makes,
+         * would */
+        if (X.expected >= 16) {
+            const uint64_t sample = X.expected / 8;
+            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, sample - 1, 0, 2, NULL, NULL, &Y, &err),
+                             SQ_ERR_SOLVER);
+            assert_non_null(strstr(err.msg, "alone made"));
+            assert_null(Y.tri);
+        }
     }
     /* the points: vertices, then crossings by their A parameter */
     double *p = malloc(2 * ((size_t)nv + X.nx) * sizeof *p);

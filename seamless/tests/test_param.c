@@ -752,6 +752,66 @@ static void test_all_models_compatible(void **state)
     }
 }
 
+/* Seed 9.1: cones that touch. On gpjs/torus.obj, (a) the one-ring of
+ * vertex 7 made cones (valences 3, 5, 3, 5, 3, 5 around it: vertex 7 is
+ * walled in) and (b) a whole meridian of 48 adjacent cones (3, 5, ...: a
+ * ring around the tube that every loop of the torus crosses). The cut graph
+ * fails on the input for want of an edge split; the edges between two
+ * cones are split at their midpoints (6, 48), the map is built on that mesh
+ * and expressed on the input: its vertices first, bit for bit, every face
+ * in its input face (sq_param_verify_refinement, run by sq_param_build),
+ * and the referee passes it with the cone file. Under the sanitizers (a)
+ * only. */
+static void ring_of_cones(const char *name, const uint32_t *ring, uint32_t n)
+{
+    model M;
+    memset(&M, 0, sizeof M);
+    snprintf(M.mesh_path, sizeof M.mesh_path, "%s/data/gpjs/torus.obj", SQ_SHARED_DIR);
+    sq_test_read_mesh(&M.m, M.mesh_path);
+    M.val = malloc(M.m.nv * sizeof *M.val);
+    for (uint32_t v = 0; v < M.m.nv; v++) M.val[v] = 4;
+    for (uint32_t i = 0; i < n; i++) M.val[ring[i]] = i % 2 ? 5 : 3;
+    /* the cone file, for the referee */
+    snprintf(M.cone_path, sizeof M.cone_path, "/tmp/sq_test_ring_XXXXXX");
+    int fd = mkstemp(M.cone_path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    for (uint32_t v = 0; v < M.m.nv; v++) fprintf(f, "%.17g\n", M.val[v] * 1.5707963267948966);
+    fclose(f);
+    sq_param_options opt;
+    sq_param_options_default(&opt);
+    sq_param P;
+    sq_param_init(&P);
+    sq_param_stats st;
+    sq_error err = {0};
+    if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("%s: %s", name, err.msg);
+    assert_true(st.cut_needs_split);
+    assert_int_equal(st.cone_splits, n); /* the ring's edges: consecutive cones */
+    assert_int_equal(P.nv_input, M.m.nv);
+    assert_int_equal(st.verts_in, M.m.nv);
+    assert_memory_equal(P.pos, M.m.pos, 3 * (size_t)M.m.nv * sizeof *P.pos);
+    for (uint32_t t = 0; t < P.nf; t++) assert_true(P.tri_in[t] < M.m.nf);
+    assert_referee_passes(&M, &P, name);
+    printf("  %s: %u edges between cones split, %u faces, %u Steiner vertices\n", name, st.cone_splits, P.nf,
+           st.steiner);
+    sq_param_free(&P);
+    remove(M.cone_path);
+    unload(&M);
+}
+
+static void test_cones_touching(void **state)
+{
+    (void)state;
+    /* vertex 7's one-ring, in order around it */
+    const uint32_t wall[] = {54, 55, 8, 3799, 3798, 6};
+    ring_of_cones("torus, vertex 7 walled in", wall, 6);
+#if !defined(__SANITIZE_ADDRESS__)
+    uint32_t meridian[48]; /* vertices 0..47: the tube's circle at angle 0 */
+    for (uint32_t i = 0; i < 48; i++) meridian[i] = i;
+    ring_of_cones("torus, a meridian of 48 cones", meridian, 48);
+#endif
+}
+
 /* Step 7c: mpz/helmet (genus 2, a valence-22 cone) at seed 1 leaves
  * thousands of flipped or flat triangles without refinement; with it the
  * cells holding them are halved until the map passes the referee, on the
@@ -873,6 +933,8 @@ static void test_rejects_bad_cones(void **state)
 
 int main(void)
 {
+    /* SQ_TEST_FILTER=test_name (a cmocka pattern) runs only the tests it matches */
+    if (getenv("SQ_TEST_FILTER")) cmocka_set_test_filter(getenv("SQ_TEST_FILTER"));
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_eight_passes),
         cmocka_unit_test(test_refinement_check),
@@ -887,6 +949,7 @@ int main(void)
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_bad_cells),
         cmocka_unit_test(test_rejects_bad_cones),
+        cmocka_unit_test(test_cones_touching),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
