@@ -58,32 +58,16 @@ static const char *check_sector(const sq_metapolygon *P, const uint32_t *chord_o
     return "does not reach the chord";
 }
 
-sq_status sq_omega_cells_verify(const sq_omega *O, const sq_omega_cells *C, sq_error *err)
+/* The chords (chord_of, vfirst: nh and nv entries, set here; on_bnd
+ * given): contiguous, interior, straight, stopping at the first vertex on
+ * the boundary or an earlier chord; he_chord agrees. */
+static sq_status verify_chords(const sq_omega *O, const sq_omega_cells *C, const uint8_t *on_bnd, uint32_t *chord_of,
+                               uint32_t *vfirst, sq_error *err)
 {
     const sq_metapolygon *P = &O->cut;
     sq_status st = SQ_OK;
-    size_t nv1 = P->nv ? P->nv : 1, nh1 = P->nh ? P->nh : 1, nf1 = P->nf ? P->nf : 1;
-    uint8_t *on_bnd = calloc(nv1, 1);
-    uint32_t *chord_of = malloc(nh1 * sizeof *chord_of);
-    uint32_t *vfirst = malloc(nv1 * sizeof *vfirst); /* first chord through a vertex */
-    uint32_t *comp = malloc(nf1 * sizeof *comp);
-    uint32_t *stack = malloc(nf1 * sizeof *stack);
-    uint64_t *count = NULL, *off = NULL;
-    uint8_t *cover = NULL;
-    if (!on_bnd || !chord_of || !vfirst || !comp || !stack) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    for (uint32_t f = 0; f < P->nf; f++)
-        if (P->f_valence[f] != 4) FAIL("omega cells: face %u is not a quad", f);
-    for (uint32_t h = 0; h < P->nh; h++) {
-        chord_of[h] = SQ_NONE;
-        if (P->he_face[h] == SQ_NONE) on_bnd[P->he_vert[h]] = 1;
-    }
+    for (uint32_t h = 0; h < P->nh; h++) chord_of[h] = SQ_NONE;
     for (uint32_t v = 0; v < P->nv; v++) vfirst[v] = SQ_NONE;
-
-    /* chords: contiguous, interior, straight, stopping at the first vertex
-     * on the boundary or an earlier chord */
     uint64_t total = 0;
     for (uint32_t i = 0; i < C->nchords; i++) {
         const sq_omega_chord *c = &C->chord[i];
@@ -138,10 +122,16 @@ sq_status sq_omega_cells_verify(const sq_omega *O, const sq_omega_cells *C, sq_e
         if ((C->he_chord[h] != 0) != (chord_of[h] != SQ_NONE))
             FAIL("omega cells: he_chord[%u] = %u disagrees with the chord list", h,
                  C->he_chord[h]);
+done:
+    return st;
+}
 
-    /* sectors: at most two quads between consecutive boundary or chord
-     * edges, at every vertex (each sector is named by its clockwise face
-     * halfedge, so every cut face halfedge starts one) */
+/* Sectors: at most two quads between consecutive boundary or chord edges,
+ * at every vertex (each sector is named by its clockwise face halfedge, so
+ * every cut face halfedge starts one). */
+static sq_status verify_sectors(const sq_metapolygon *P, const uint32_t *chord_of, sq_error *err)
+{
+    sq_status st = SQ_OK;
     for (uint32_t s = 0; s < P->nh; s++) {
         if (P->he_face[s] == SQ_NONE || !bounds(P, chord_of, s, SQ_NONE)) continue;
         uint32_t v = P->he_vert[s], q = 1, g = ccw(P, s);
@@ -151,9 +141,16 @@ sq_status sq_omega_cells_verify(const sq_omega *O, const sq_omega_cells *C, sq_e
                  "boundary and chord edges",
                  v, q, s);
     }
+done:
+    return st;
+}
 
-    /* cells: constant across non-chord edges, different across chords,
-     * each connected */
+/* Cells: constant across non-chord edges, different across chords, each
+ * connected (comp, stack: nf entries of scratch). */
+static sq_status verify_cells(const sq_metapolygon *P, const sq_omega_cells *C, const uint32_t *chord_of,
+                              uint32_t *comp, uint32_t *stack, sq_error *err)
+{
+    sq_status st = SQ_OK;
     if (C->ncells == 0 && P->nf) FAIL("omega cells: no cells");
     for (uint32_t f = 0; f < P->nf; f++) {
         if (C->f_cell[f] >= C->ncells)
@@ -185,10 +182,20 @@ sq_status sq_omega_cells_verify(const sq_omega *O, const sq_omega_cells *C, sq_e
     }
     if (ncomp != C->ncells)
         FAIL("omega cells: %u connected pieces between chords, but %u cells", ncomp, C->ncells);
+done:
+    return st;
+}
 
-    /* every cell tiles its box exactly: count = area, each unit square of
-     * the box covered once (so none outside), its cut edges on the box's
-     * boundary */
+/* Every cell tiles its box exactly: count = area, each unit square of the
+ * box covered once (so none outside), its cut edges on the box's
+ * boundary. */
+static sq_status verify_tiling(const sq_omega *O, const sq_omega_cells *C, const uint32_t *chord_of, sq_error *err)
+{
+    const sq_metapolygon *P = &O->cut;
+    sq_status st = SQ_OK;
+    uint64_t *count = NULL, *off = NULL;
+    uint8_t *cover = NULL;
+    const size_t nf1 = P->nf ? P->nf : 1;
     count = calloc(C->ncells ? C->ncells : 1, sizeof *count);
     off = malloc(((size_t)C->ncells + 1) * sizeof *off);
     if (!count || !off) {
@@ -247,13 +254,39 @@ sq_status sq_omega_cells_verify(const sq_omega *O, const sq_omega_cells *C, sq_e
         cover[i] = 1;
     }
 done:
+    free(count);
+    free(off);
+    free(cover);
+    return st;
+}
+
+sq_status sq_omega_cells_verify(const sq_omega *O, const sq_omega_cells *C, sq_error *err)
+{
+    const sq_metapolygon *P = &O->cut;
+    sq_status st = SQ_OK;
+    size_t nv1 = P->nv ? P->nv : 1, nh1 = P->nh ? P->nh : 1, nf1 = P->nf ? P->nf : 1;
+    uint8_t *on_bnd = calloc(nv1, 1);
+    uint32_t *chord_of = malloc(nh1 * sizeof *chord_of);
+    uint32_t *vfirst = malloc(nv1 * sizeof *vfirst); /* first chord through a vertex */
+    uint32_t *comp = malloc(nf1 * sizeof *comp);
+    uint32_t *stack = malloc(nf1 * sizeof *stack);
+    if (!on_bnd || !chord_of || !vfirst || !comp || !stack) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (uint32_t f = 0; f < P->nf; f++)
+        if (P->f_valence[f] != 4) FAIL("omega cells: face %u is not a quad", f);
+    for (uint32_t h = 0; h < P->nh; h++)
+        if (P->he_face[h] == SQ_NONE) on_bnd[P->he_vert[h]] = 1;
+    st = verify_chords(O, C, on_bnd, chord_of, vfirst, err);
+    if (st == SQ_OK) st = verify_sectors(P, chord_of, err);
+    if (st == SQ_OK) st = verify_cells(P, C, chord_of, comp, stack, err);
+    if (st == SQ_OK) st = verify_tiling(O, C, chord_of, err);
+done:
     free(on_bnd);
     free(chord_of);
     free(vfirst);
     free(comp);
     free(stack);
-    free(count);
-    free(off);
-    free(cover);
     return st;
 }
