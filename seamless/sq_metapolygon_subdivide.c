@@ -28,29 +28,73 @@ void sq_mp_quads_free(sq_mp_quads *Q)
     sq_metapolygon_init(&Q->mesh);
 }
 
+/* Seed 5.4 needs a metapolygon: no boundary vertex on more than two
+ * faces. */
+static sq_status check_boundary(const sq_metapolygon *P, sq_error *err)
+{
+    uint32_t h = P->bnd_he;
+    do {
+        if (P->v_nface[P->he_vert[h]] > 2)
+            return sq_error_set(err, SQ_ERR_ARGUMENT, "seed 5.4 needs a metapolygon: boundary vertex %u has %u faces",
+                                P->he_vert[h], P->v_nface[P->he_vert[h]]);
+        h = P->he_next[h];
+    } while (h != P->bnd_he);
+    return SQ_OK;
+}
+
+/* out's boundary order (bnd_vert, bnd_he, from its mesh's bnd_he), its
+ * corners (the vertices v_corner marks) and the sides between them. */
+static sq_status boundary_sides(sq_mp_quads *out, sq_error *err)
+{
+    const sq_metapolygon *M = &out->mesh;
+    out->nbnd = M->nbnd;
+    uint32_t ncorner = 0;
+    {
+        uint32_t h = M->bnd_he, j = 0;
+        do {
+            out->bnd_vert[j] = M->he_vert[h];
+            out->bnd_he[j] = h;
+            ncorner += out->v_corner[M->he_vert[h]];
+            j++;
+            h = M->he_next[h];
+        } while (h != M->bnd_he);
+        assert(j == out->nbnd);
+    }
+    out->ncorner = ncorner;
+    out->corner_pos = malloc((size_t)(ncorner ? ncorner : 1) * sizeof(uint32_t));
+    out->side_len = malloc((size_t)(ncorner ? ncorner : 1) * sizeof(uint32_t));
+    if (!out->corner_pos || !out->side_len)
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory subdividing a metapolygon");
+    {
+        uint32_t c = 0;
+        for (uint32_t j = 0; j < out->nbnd; j++)
+            if (out->v_corner[out->bnd_vert[j]]) out->corner_pos[c++] = j;
+        for (uint32_t s = 0; s < ncorner; s++) {
+            uint32_t next = s + 1 < ncorner ? out->corner_pos[s + 1]
+                                            : out->corner_pos[0] + out->nbnd;
+            out->side_len[s] = next - out->corner_pos[s];
+            assert(out->side_len[s] >= 2 && out->side_len[s] % 2 == 0);
+        }
+        assert(ncorner == 0 || out->corner_pos[0] == 0);
+    }
+    /* corners of the quad mesh are exactly the valence-1 boundary vertices */
+    assert(sq_metapolygon_count_corners(M) == ncorner);
+    return SQ_OK;
+}
+
 sq_status sq_metapolygon_subdivide(const sq_metapolygon *P, sq_mp_quads *out, sq_error *err)
 {
     memset(out, 0, sizeof *out);
     sq_metapolygon_init(&out->mesh);
     if (P->nf == 0)
         return sq_error_set(err, SQ_ERR_ARGUMENT, "cannot subdivide an empty metapolygon");
-    {
-        uint32_t h = P->bnd_he;
-        do {
-            if (P->v_nface[P->he_vert[h]] > 2)
-                return sq_error_set(err, SQ_ERR_ARGUMENT,
-                                    "seed 5.4 needs a metapolygon: boundary vertex %u has %u "
-                                    "faces",
-                                    P->he_vert[h], P->v_nface[P->he_vert[h]]);
-            h = P->he_next[h];
-        } while (h != P->bnd_he);
-    }
+    sq_status st = check_boundary(P, err);
+    if (st) return st;
     const uint32_t nv = P->nv, nf = P->nf, nh = P->nh, nb = P->nbnd;
     uint32_t *e_id = malloc((size_t)nh * sizeof *e_id);
     uint32_t *q_id = malloc((size_t)nh * sizeof *q_id);
     uint32_t *fprev = malloc((size_t)nh * sizeof *fprev);
     uint32_t *b_id = malloc((size_t)nh * sizeof *b_id);
-    sq_status st = SQ_OK;
     sq_metapolygon *M = &out->mesh;
     if (!e_id || !q_id || !fprev || !b_id) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory subdividing a metapolygon");
@@ -174,41 +218,7 @@ sq_status sq_metapolygon_subdivide(const sq_metapolygon *P, sq_mp_quads *out, sq
 #undef B0
 #undef B1
 
-    /* boundary order, corners and sides */
-    out->nbnd = M->nbnd;
-    uint32_t ncorner = 0;
-    {
-        uint32_t h = M->bnd_he, j = 0;
-        do {
-            out->bnd_vert[j] = M->he_vert[h];
-            out->bnd_he[j] = h;
-            ncorner += out->v_corner[M->he_vert[h]];
-            j++;
-            h = M->he_next[h];
-        } while (h != M->bnd_he);
-        assert(j == out->nbnd);
-    }
-    out->ncorner = ncorner;
-    out->corner_pos = malloc((size_t)(ncorner ? ncorner : 1) * sizeof(uint32_t));
-    out->side_len = malloc((size_t)(ncorner ? ncorner : 1) * sizeof(uint32_t));
-    if (!out->corner_pos || !out->side_len) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory subdividing a metapolygon");
-        goto done;
-    }
-    {
-        uint32_t c = 0;
-        for (uint32_t j = 0; j < out->nbnd; j++)
-            if (out->v_corner[out->bnd_vert[j]]) out->corner_pos[c++] = j;
-        for (uint32_t s = 0; s < ncorner; s++) {
-            uint32_t next = s + 1 < ncorner ? out->corner_pos[s + 1]
-                                            : out->corner_pos[0] + out->nbnd;
-            out->side_len[s] = next - out->corner_pos[s];
-            assert(out->side_len[s] >= 2 && out->side_len[s] % 2 == 0);
-        }
-        assert(ncorner == 0 || out->corner_pos[0] == 0);
-    }
-    /* corners of the quad mesh are exactly the valence-1 boundary vertices */
-    assert(sq_metapolygon_count_corners(M) == ncorner);
+    st = boundary_sides(out, err);
 done:
     free(e_id);
     free(q_id);

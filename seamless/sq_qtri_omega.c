@@ -421,40 +421,13 @@ static int collapse_ok(const uint32_t *tri, const uint8_t *alive, const vlist *v
     return common == 4;
 }
 
-sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
+/* Greedy passes (up to 4): each inner vertex of the triangles tri (alive,
+ * faces per vertex vf, positions p) collapsed into its nearest neighbour
+ * that keeps the triangulation valid (collapse_ok); gone marks the
+ * vertices removed, *removed counts them. */
+static sq_status collapse_passes(uint32_t nv, uint32_t *tri, uint8_t *alive, vlist *vf, const double *p,
+                                 const uint8_t *bnd, uint8_t *gone, uint32_t *removed, sq_error *err)
 {
-    sq_metapolygon *W = &O->cut;
-    const uint32_t nf = W->nf, nv = W->nv, nh = W->nh;
-    *removed = 0;
-    for (uint32_t f = 0; f < nf; f++)
-        if (W->f_valence[f] != 3) return sq_error_set(err, SQ_ERR_ARGUMENT, "coarsen: face %u is no triangle", f);
-    uint32_t *tri = malloc(3 * (size_t)nf * sizeof *tri);
-    uint8_t *alive = malloc((size_t)nf + 1), *bnd = calloc((size_t)nv + 1, 1), *gone = calloc((size_t)nv + 1, 1);
-    vlist *vf = calloc((size_t)nv + 1, sizeof *vf);
-    double *p = malloc(2 * (size_t)nv * sizeof *p);
-    uint32_t *vnew = malloc(((size_t)nv + 1) * sizeof *vnew), *hmap = NULL;
-    sq_metapolygon N;
-    sq_metapolygon_init(&N);
-    sq_status st = SQ_OK;
-    if (!tri || !alive || !bnd || !gone || !vf || !p || !vnew) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
-        goto done;
-    }
-    for (uint32_t f = 0; f < nf; f++) {
-        uint32_t h = W->f_he[f];
-        for (int k = 0; k < 3; k++, h = W->he_next[h]) tri[3 * f + (uint32_t)k] = W->he_vert[h];
-        alive[f] = 1;
-        for (int k = 0; k < 3; k++)
-            if (vlist_add(&vf[tri[3 * f + (uint32_t)k]], f)) {
-                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
-                goto done;
-            }
-    }
-    for (uint32_t h = 0; h < nh; h++)
-        if (W->he_face[h] == SQ_NONE) bnd[W->he_vert[h]] = 1;
-    for (uint32_t v = 0; v < nv; v++) p[2 * v] = (double)O->xy[2 * v], p[2 * v + 1] = (double)O->xy[2 * v + 1];
-    /* greedy passes: each inner vertex into its nearest neighbour that keeps
-     * the triangulation valid */
     for (int pass = 0; pass < 4; pass++) {
         uint32_t done_pass = 0;
         for (uint32_t v = 0; v < nv; v++) {
@@ -491,10 +464,7 @@ sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
                     }
                     for (int k = 0; k < 3; k++)
                         if (t[k] == v) t[k] = w;
-                    if (vlist_add(&vf[w], f)) {
-                        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
-                        goto done;
-                    }
+                    if (vlist_add(&vf[w], f)) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
                 }
                 gone[v] = 1, done_pass++;
                 break;
@@ -503,33 +473,39 @@ sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
         *removed += done_pass;
         if (!done_pass) break;
     }
-    /* rebuild Omega_c: live vertices and faces renumbered, boundary kept */
+    return SQ_OK;
+}
+
+/* N: W's triangles that are alive, their vertices renumbered by vnew
+ * (SQ_NONE: gone), W's boundary kept in order after the faces' halfedges;
+ * hmap (W->nh): W's boundary halfedges in N (SQ_NONE elsewhere). */
+static sq_status rebuild_cut(const sq_metapolygon *W, const uint32_t *tri, const uint8_t *alive, const uint8_t *gone,
+                             uint32_t *vnew, uint32_t *hmap, sq_metapolygon *N, sq_error *err)
+{
+    const uint32_t nf = W->nf, nv = W->nv, nh = W->nh;
+    sq_status st;
     uint32_t mv = 0, mf = 0;
     for (uint32_t v = 0; v < nv; v++) vnew[v] = gone[v] ? SQ_NONE : mv++;
     for (uint32_t f = 0; f < nf; f++) mf += alive[f];
     const uint32_t nbh = W->nbnd, mh = 3 * mf + nbh;
-    st = sq_metapolygon_reserve(&N, mv, mf, mh, err);
-    if (st) goto done;
-    N.nv = mv, N.nf = mf, N.nh = mh, N.nbnd = nbh;
+    st = sq_metapolygon_reserve(N, mv, mf, mh, err);
+    if (st) return st;
+    N->nv = mv, N->nf = mf, N->nh = mh, N->nbnd = nbh;
     /* face halfedges 3f' + k; twins by a hash of (tail, head) */
     sq_edge_hash E = {0, NULL, NULL};
-    hmap = malloc((size_t)nh * sizeof *hmap);
-    if (!hmap || sq_edge_hash_init(&E, mh)) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
-        goto done;
-    }
-    for (uint32_t v = 0; v < mv; v++) N.v_nface[v] = 0, N.v_he[v] = SQ_NONE;
+    if (sq_edge_hash_init(&E, mh)) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+    for (uint32_t v = 0; v < mv; v++) N->v_nface[v] = 0, N->v_he[v] = SQ_NONE;
     uint32_t ff = 0;
     for (uint32_t f = 0; f < nf; f++) {
         if (!alive[f]) continue;
         for (uint32_t k = 0; k < 3; k++) {
             uint32_t h = 3 * ff + k, a = vnew[tri[3 * f + k]], b = vnew[tri[3 * f + (k + 1) % 3]];
-            N.he_vert[h] = a, N.he_next[h] = 3 * ff + (k + 1) % 3, N.he_face[h] = ff, N.he_twin[h] = SQ_NONE;
-            N.v_nface[a]++;
-            if (N.v_he[a] == SQ_NONE) N.v_he[a] = h;
+            N->he_vert[h] = a, N->he_next[h] = 3 * ff + (k + 1) % 3, N->he_face[h] = ff, N->he_twin[h] = SQ_NONE;
+            N->v_nface[a]++;
+            if (N->v_he[a] == SQ_NONE) N->v_he[a] = h;
             E.val[sq_edge_hash_slot(&E, a, b)] = h;
         }
-        N.f_he[ff] = 3 * ff, N.f_valence[ff] = 3;
+        N->f_he[ff] = 3 * ff, N->f_valence[ff] = 3;
         ff++;
     }
     /* boundary halfedges in W's order after the faces */
@@ -541,56 +517,101 @@ sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
     for (uint32_t h = 0; h < nh && st == SQ_OK; h++) {
         if (hmap[h] == SQ_NONE) continue;
         uint32_t b = hmap[h], a0 = vnew[W->he_vert[h]], a1 = vnew[W->he_vert[W->he_next[h]]];
-        N.he_vert[b] = a0, N.he_next[b] = hmap[W->he_next[h]], N.he_face[b] = SQ_NONE;
+        N->he_vert[b] = a0, N->he_next[b] = hmap[W->he_next[h]], N->he_face[b] = SQ_NONE;
         uint32_t f = E.val[sq_edge_hash_slot(&E, a1, a0)];
         if (f == SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "coarsen: boundary edge %u-%u lost its face", a0, a1);
             break;
         }
-        N.he_twin[b] = f, N.he_twin[f] = b;
-        N.v_he[a0] = b;
+        N->he_twin[b] = f, N->he_twin[f] = b;
+        N->v_he[a0] = b;
     }
     for (uint32_t h = 0; h < 3 * mf && st == SQ_OK; h++) {
-        if (N.he_twin[h] != SQ_NONE) continue;
-        uint32_t a = N.he_vert[h], b = N.he_vert[N.he_next[h]];
+        if (N->he_twin[h] != SQ_NONE) continue;
+        uint32_t a = N->he_vert[h], b = N->he_vert[N->he_next[h]];
         uint32_t t = E.val[sq_edge_hash_slot(&E, b, a)];
         if (t == SQ_NONE) {
             st = sq_error_set(err, SQ_ERR_INTERNAL, "coarsen: edge %u-%u has no twin", a, b);
             break;
         }
-        N.he_twin[h] = t;
+        N->he_twin[h] = t;
     }
     sq_edge_hash_free(&E);
-    if (st) goto done;
-    N.bnd_he = hmap[W->bnd_he];
-    st = sq_metapolygon_validate(&N, 0, err);
-    if (st) goto done;
-    /* the rest of O follows the renumbering */
-    {
-        uint32_t *lab = malloc((size_t)mh * sizeof *lab), *par = malloc((size_t)mh * sizeof *par);
-        uint32_t *qhe = malloc((size_t)mh * sizeof *qhe), *qv = malloc(((size_t)mv + 1) * sizeof *qv);
-        int64_t *xy = malloc(2 * ((size_t)mv + 1) * sizeof *xy);
-        if (!lab || !par || !qhe || !qv || !xy) {
-            free(lab), free(par), free(qhe), free(qv), free(xy);
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
-            goto done;
-        }
-        for (uint32_t h = 0; h < mh; h++) lab[h] = par[h] = qhe[h] = SQ_NONE;
-        for (uint32_t h = 0; h < nh; h++) {
-            if (hmap[h] == SQ_NONE) continue;
-            lab[hmap[h]] = O->he_label[h];
-            par[hmap[h]] = O->he_partner[h] == SQ_NONE ? SQ_NONE : hmap[O->he_partner[h]];
-            qhe[hmap[h]] = O->he_qhe[h];
-        }
-        for (uint32_t v = 0; v < nv; v++)
-            if (vnew[v] != SQ_NONE)
-                qv[vnew[v]] = O->v_qvert[v], xy[2 * vnew[v]] = O->xy[2 * v], xy[2 * vnew[v] + 1] = O->xy[2 * v + 1];
-        free(O->he_label), free(O->he_partner), free(O->he_qhe), free(O->v_qvert), free(O->xy);
-        O->he_label = lab, O->he_partner = par, O->he_qhe = qhe, O->v_qvert = qv, O->xy = xy;
-        sq_metapolygon_free(W);
-        *W = N;
-        sq_metapolygon_init(&N);
+    if (st) return st;
+    N->bnd_he = hmap[W->bnd_he];
+    return sq_metapolygon_validate(N, 0, err);
+}
+
+/* The rest of O (labels, partners, Q's halfedges and vertices, layout)
+ * renumbered to N (vnew, hmap as rebuild_cut made them); N replaces O's
+ * cut. */
+static sq_status renumber_omega(sq_omega *O, sq_metapolygon *N, const uint32_t *vnew, const uint32_t *hmap,
+                                sq_error *err)
+{
+    sq_metapolygon *W = &O->cut;
+    const uint32_t nv = W->nv, nh = W->nh, mv = N->nv, mh = N->nh;
+    uint32_t *lab = malloc((size_t)mh * sizeof *lab), *par = malloc((size_t)mh * sizeof *par);
+    uint32_t *qhe = malloc((size_t)mh * sizeof *qhe), *qv = malloc(((size_t)mv + 1) * sizeof *qv);
+    int64_t *xy = malloc(2 * ((size_t)mv + 1) * sizeof *xy);
+    if (!lab || !par || !qhe || !qv || !xy) {
+        free(lab), free(par), free(qhe), free(qv), free(xy);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
     }
+    for (uint32_t h = 0; h < mh; h++) lab[h] = par[h] = qhe[h] = SQ_NONE;
+    for (uint32_t h = 0; h < nh; h++) {
+        if (hmap[h] == SQ_NONE) continue;
+        lab[hmap[h]] = O->he_label[h];
+        par[hmap[h]] = O->he_partner[h] == SQ_NONE ? SQ_NONE : hmap[O->he_partner[h]];
+        qhe[hmap[h]] = O->he_qhe[h];
+    }
+    for (uint32_t v = 0; v < nv; v++)
+        if (vnew[v] != SQ_NONE)
+            qv[vnew[v]] = O->v_qvert[v], xy[2 * vnew[v]] = O->xy[2 * v], xy[2 * vnew[v] + 1] = O->xy[2 * v + 1];
+    free(O->he_label), free(O->he_partner), free(O->he_qhe), free(O->v_qvert), free(O->xy);
+    O->he_label = lab, O->he_partner = par, O->he_qhe = qhe, O->v_qvert = qv, O->xy = xy;
+    sq_metapolygon_free(W);
+    *W = *N;
+    sq_metapolygon_init(N);
+    return SQ_OK;
+}
+
+sq_status sq_omega_coarsen(sq_omega *O, uint32_t *removed, sq_error *err)
+{
+    sq_metapolygon *W = &O->cut;
+    const uint32_t nf = W->nf, nv = W->nv, nh = W->nh;
+    *removed = 0;
+    for (uint32_t f = 0; f < nf; f++)
+        if (W->f_valence[f] != 3) return sq_error_set(err, SQ_ERR_ARGUMENT, "coarsen: face %u is no triangle", f);
+    uint32_t *tri = malloc(3 * (size_t)nf * sizeof *tri);
+    uint8_t *alive = malloc((size_t)nf + 1), *bnd = calloc((size_t)nv + 1, 1), *gone = calloc((size_t)nv + 1, 1);
+    vlist *vf = calloc((size_t)nv + 1, sizeof *vf);
+    double *p = malloc(2 * (size_t)nv * sizeof *p);
+    uint32_t *vnew = malloc(((size_t)nv + 1) * sizeof *vnew), *hmap = NULL;
+    sq_metapolygon N;
+    sq_metapolygon_init(&N);
+    sq_status st = SQ_OK;
+    if (!tri || !alive || !bnd || !gone || !vf || !p || !vnew) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+        goto done;
+    }
+    for (uint32_t f = 0; f < nf; f++) {
+        uint32_t h = W->f_he[f];
+        for (int k = 0; k < 3; k++, h = W->he_next[h]) tri[3 * f + (uint32_t)k] = W->he_vert[h];
+        alive[f] = 1;
+        for (int k = 0; k < 3; k++)
+            if (vlist_add(&vf[tri[3 * f + (uint32_t)k]], f)) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+                goto done;
+            }
+    }
+    for (uint32_t h = 0; h < nh; h++)
+        if (W->he_face[h] == SQ_NONE) bnd[W->he_vert[h]] = 1;
+    for (uint32_t v = 0; v < nv; v++) p[2 * v] = (double)O->xy[2 * v], p[2 * v + 1] = (double)O->xy[2 * v + 1];
+    st = collapse_passes(nv, tri, alive, vf, p, bnd, gone, removed, err);
+    hmap = st == SQ_OK ? malloc((size_t)nh * sizeof *hmap) : NULL;
+    if (st == SQ_OK && !hmap) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (coarsen)");
+    if (st == SQ_OK) st = rebuild_cut(W, tri, alive, gone, vnew, hmap, &N, err);
+    if (st == SQ_OK) st = renumber_omega(O, &N, vnew, hmap, err);
 done:
     sq_metapolygon_free(&N);
     if (vf)
