@@ -575,6 +575,31 @@ static uint32_t balanced_split(const ov *proto, uint64_t cap, uint32_t *sample_n
     return split > 0 && split < nf ? split : nf / 2;
 }
 
+/* Range 1's triangles after range 0's in out, with the merged crossing
+ * ids (map: X1's crossing k is overlay vertex map[k]), and the locations
+ * of the vertices only range 1 located. */
+static sq_status append_range1(sq_overlay *out, const sq_overlay *X1, const uint32_t *map, uint32_t nv, sq_error *err)
+{
+    if (X1->ntri) {
+        uint32_t nt = out->ntri + X1->ntri;
+        if (nt < out->ntri) return sq_error_set(err, SQ_ERR_NOMEM, "overlay: more than 2^32 triangles");
+        if (reserve_triangles(out, nt)) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+        for (size_t i = 0; i < 3 * (size_t)X1->ntri; i++) {
+            uint32_t v = X1->tri[i];
+            out->tri[3 * (size_t)out->ntri + i] = v < nv ? v : map[v - nv];
+        }
+        memcpy(out->tri_fa + out->ntri, X1->tri_fa, (size_t)X1->ntri * sizeof *X1->tri_fa);
+        memcpy(out->tri_fb + out->ntri, X1->tri_fb, (size_t)X1->ntri * sizeof *X1->tri_fb);
+        out->ntri = nt;
+    }
+    for (uint32_t v = 0; v < nv; v++)
+        if (out->loc[v] == SQ_NONE && X1->loc[v] != SQ_NONE) {
+            out->loc[v] = X1->loc[v];
+            memcpy(out->bary + 3 * (size_t)v, X1->bary + 3 * (size_t)v, 3 * sizeof *out->bary);
+        }
+    return SQ_OK;
+}
+
 /* The sample's cap (balanced_split; 0: none): the budget as it stands, and
  * where the expectation is checked against it (check_expected), the
  * sample's count beyond which the check refuses anyway. Not max_expected
@@ -720,30 +745,8 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
                           (unsigned long long)max_crossings, stop_g + 1, B->nf);
         goto done;
     }
-    /* range 1's triangles after range 0's, with the merged ids */
-    if (X1.ntri) {
-        uint32_t nt = out->ntri + X1.ntri;
-        if (nt < out->ntri) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "overlay: more than 2^32 triangles");
-            goto done;
-        }
-        if (reserve_triangles(out, nt)) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-            goto done;
-        }
-        for (size_t i = 0; i < 3 * (size_t)X1.ntri; i++) {
-            uint32_t v = X1.tri[i];
-            out->tri[3 * (size_t)out->ntri + i] = v < nv ? v : map[v - nv];
-        }
-        memcpy(out->tri_fa + out->ntri, X1.tri_fa, (size_t)X1.ntri * sizeof *X1.tri_fa);
-        memcpy(out->tri_fb + out->ntri, X1.tri_fb, (size_t)X1.ntri * sizeof *X1.tri_fb);
-        out->ntri = nt;
-    }
-    for (uint32_t v = 0; v < nv; v++)
-        if (out->loc[v] == SQ_NONE && X1.loc[v] != SQ_NONE) {
-            out->loc[v] = X1.loc[v];
-            memcpy(out->bary + 3 * (size_t)v, X1.bary + 3 * (size_t)v, 3 * sizeof *out->bary);
-        }
+    st = append_range1(out, &X1, map, nv, err);
+    if (st) goto done;
     /* every interior vertex of either mesh must have been placed */
     for (uint32_t v = nbnd; v < nv; v++)
         if (out->loc[v] == SQ_NONE) {

@@ -101,6 +101,28 @@ static int cell_side(const sq_metapolygon *W, const uint8_t *he_chord, uint32_t 
     return W->he_face[W->he_twin[h]] == SQ_NONE || !he_chord || he_chord[h];
 }
 
+/* The UVs of B's first vertices (nv of them, the layers' filled later):
+ * A's boundary points (buv0), Omega's vertices (wid) and the midpoints
+ * (mid) from Omega's layout in units of gs. NULL: out of memory. */
+static double *first_uvs(const sq_omega *O, uint32_t nv, uint32_t nbl, uint32_t na, const double *buv0,
+                         const uint32_t *wid, const uint32_t *mid, double gs)
+{
+    const sq_metapolygon *W = &O->cut;
+    double *uv = malloc(2 * (size_t)nv * sizeof *uv);
+    if (!uv) return NULL;
+    memcpy(uv, buv0, 2 * (size_t)nbl * sizeof *uv);
+    for (uint32_t v = 0; v < W->nv; v++)
+        if (wid[v] != SQ_NONE && wid[v] >= na)
+            uv[2 * (size_t)wid[v]] = (double)O->xy[2 * v] * gs, uv[2 * (size_t)wid[v] + 1] = (double)O->xy[2 * v + 1] * gs;
+    for (uint32_t h = 0; h < W->nh; h++)
+        if (mid[h] != SQ_NONE && h < W->he_twin[h]) {
+            uint32_t a = W->he_vert[h], b = W->he_vert[W->he_twin[h]];
+            uv[2 * (size_t)mid[h]] = 0.5 * (double)(O->xy[2 * a] + O->xy[2 * b]) * gs;
+            uv[2 * (size_t)mid[h] + 1] = 0.5 * (double)(O->xy[2 * a + 1] + O->xy[2 * b + 1]) * gs;
+        }
+    return uv;
+}
+
 sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *C, uint32_t nbl, uint32_t na,
                                        const uint32_t *wb, const uint32_t *oseq, const uint32_t *bstart,
                                        const double *buv0, uint32_t *nv_out, double **uv_out,
@@ -160,21 +182,11 @@ sq_status sq_param_omega_triangulation(const sq_omega *O, const sq_omega_cells *
     uint32_t layer0 = nv, next = 0;
     for (int pass = 0; pass < 2 && st == SQ_OK; pass++) {
         if (pass == 1) {
-            uv = malloc(2 * (size_t)nv * sizeof *uv);
+            uv = first_uvs(O, nv, nbl, na, buv0, wid, mid, gs);
             if (!uv) {
                 st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
                 break;
             }
-            memcpy(uv, buv0, 2 * (size_t)nbl * sizeof *uv);
-            for (uint32_t v = 0; v < W->nv; v++)
-                if (wid[v] != SQ_NONE && wid[v] >= na)
-                    uv[2 * (size_t)wid[v]] = (double)O->xy[2 * v] * gs, uv[2 * (size_t)wid[v] + 1] = (double)O->xy[2 * v + 1] * gs;
-            for (uint32_t h = 0; h < W->nh; h++)
-                if (mid[h] != SQ_NONE && h < W->he_twin[h]) {
-                    uint32_t a = W->he_vert[h], b = W->he_vert[W->he_twin[h]];
-                    uv[2 * (size_t)mid[h]] = 0.5 * (double)(O->xy[2 * a] + O->xy[2 * b]) * gs;
-                    uv[2 * (size_t)mid[h] + 1] = 0.5 * (double)(O->xy[2 * a + 1] + O->xy[2 * b + 1]) * gs;
-                }
             next = layer0;
         }
         for (uint32_t k = 0; k < ncells && st == SQ_OK; k++) {
