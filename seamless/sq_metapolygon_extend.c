@@ -68,20 +68,13 @@ static void seq_count(const sq_metapolygon *P, const nonflat_seq *s, uint32_t *c
     }
 }
 
-sq_status sq_metapolygon_extend(sq_metapolygon *P, uint32_t i, uint32_t glue_he,
-                                sq_extend_stats *stats, sq_error *err)
+/* Def. 5.4 input: meta-k-gon P (the empty one counts as k = 4), k > 0,
+ * i > max(1, 4 - k), i != 4; *k_out: k. */
+static sq_status check_input(const sq_metapolygon *P, uint32_t i, uint32_t *k_out, sq_error *err)
 {
-    sq_extend_stats local;
-    if (!stats) stats = &local;
-    stats->face = SQ_NONE;
-    stats->glue_he = SQ_NONE;
-    stats->concave = stats->grids_step2 = stats->grids_step3 = 0;
-    stats->quads_step2 = stats->quads_step3 = 0;
-
-    /* Def. 5.4 input: meta-k-gon P (the empty one counts as k = 4), k > 0,
-     * i > max(1, 4 - k), i != 4. */
-    int empty = P->nf == 0;
-    uint32_t k = empty ? 4 : sq_metapolygon_count_corners(P);
+    const int empty = P->nf == 0;
+    const uint32_t k = empty ? 4 : sq_metapolygon_count_corners(P);
+    *k_out = k;
     if (i == 4)
         return sq_error_set(err, SQ_ERR_ARGUMENT,
                             "Def. 5.4: cannot extend by a 4-gon (regular faces are fill, not "
@@ -109,6 +102,24 @@ sq_status sq_metapolygon_extend(sq_metapolygon *P, uint32_t i, uint32_t glue_he,
                             "Def. 5.4: a %u-gon cannot extend a meta-%u-gon (needs i > 4 - k = "
                             "%d)",
                             i, k, 4 - (int)k);
+    return SQ_OK;
+}
+
+sq_status sq_metapolygon_extend(sq_metapolygon *P, uint32_t i, uint32_t glue_he,
+                                sq_extend_stats *stats, sq_error *err)
+{
+    sq_extend_stats local;
+    if (!stats) stats = &local;
+    stats->face = SQ_NONE;
+    stats->glue_he = SQ_NONE;
+    stats->concave = stats->grids_step2 = stats->grids_step3 = 0;
+    stats->quads_step2 = stats->quads_step3 = 0;
+
+    /* Def. 5.4 input */
+    int empty = P->nf == 0;
+    uint32_t k;
+    sq_status st0 = check_input(P, i, &k, err);
+    if (st0) return st0;
 
     /* Step 1 on the empty metapolygon: P' is just the i-gon, already a
      * meta-i-gon. */

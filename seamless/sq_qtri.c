@@ -344,6 +344,34 @@ static sq_status first_path(sq_qtri *T, uint32_t from, uint32_t to, uint32_t **p
     return st;
 }
 
+/* The root of Q: the inner vertex of side q_root_side at about the
+ * surface root's fraction of its side (root->index of the surface side's
+ * length in G), and the halfedge of S leaving it along that side. */
+static sq_status place_root(sq_qtri *T, const sq_domain *D, const sq_cut_graph *G, const sq_guide_root *root,
+                            uint32_t q_root_side, sq_error *err)
+{
+    const sq_tsurf *S = &T->S;
+    const sq_metapolygon *Q = &D->quads;
+    uint32_t L = D->side_len[q_root_side];
+    uint32_t Ls = G->side_off[root->side + 1] - G->side_off[root->side];
+    if (L < 2) return sq_error_set(err, SQ_ERR_INTERNAL, "tree copy: side %u of Q has no inner vertex", q_root_side);
+    uint32_t *side = malloc(((size_t)L + 1) * sizeof *side);
+    if (!side) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (tree copy)");
+    sq_domain_side_vertices(D, q_root_side, side);
+    long iq = lround((double)root->index / (double)(Ls ? Ls : 1) * (double)L);
+    iq = iq < 1 ? 1 : iq > (long)L - 1 ? (long)L - 1 : iq;
+    uint32_t v = side[iq], e = SQ_NONE;
+    for (int d = -1; d <= 1 && e == SQ_NONE; d += 2) {
+        uint32_t w = side[iq + d], qh = q_inner_he(Q, v, w);
+        if (qh != SQ_NONE && Q->he_vert[qh] == v)
+            e = s_he_in_quad(S, Q->he_face[qh], T->closed_of[v], T->closed_of[w]);
+    }
+    free(side);
+    if (e == SQ_NONE) return sq_error_set(err, SQ_ERR_INTERNAL, "tree copy: no root halfedge on side %u", q_root_side);
+    T->root = T->closed_of[v], T->root_side = q_root_side, T->root_he = e, T->root_pos = (uint32_t)iq;
+    return SQ_OK;
+}
+
 sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, const sq_cut_graph *G,
                             uint32_t n, const uint32_t *cone, const uint32_t *qcone,
                             const uint32_t *tree_next, const uint32_t *att_vertex,
@@ -355,7 +383,7 @@ sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, co
         return sq_error_set(err, SQ_ERR_SOLVER, "tree copy: the surface tree has no root path");
     rep R = {T, m, tree_next, malloc((size_t)m->nv * sizeof(uint32_t)), malloc((size_t)m->nv * sizeof(uint32_t)),
              malloc(((size_t)m->nv + 1) * sizeof(uint32_t)), err};
-    uint32_t *path = NULL, np = 0, *side = NULL;
+    uint32_t *path = NULL, np = 0;
     uint8_t *cone_free = calloc(S->nv_input, 1);
     T->cone = malloc((size_t)n * sizeof *T->cone);
     T->att = malloc((size_t)n * sizeof *T->att);
@@ -391,36 +419,8 @@ sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, co
             goto done;
         }
     }
-    /* the root of Q: the inner vertex of side q_root_side at about the
-     * surface root's fraction of its side */
-    {
-        const sq_metapolygon *Q = &D->quads;
-        uint32_t L = D->side_len[q_root_side];
-        uint32_t Ls = G->side_off[root->side + 1] - G->side_off[root->side];
-        side = malloc(((size_t)L + 1) * sizeof *side);
-        if (!side) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (tree copy)");
-            goto done;
-        }
-        if (L < 2) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "tree copy: side %u of Q has no inner vertex", q_root_side);
-            goto done;
-        }
-        sq_domain_side_vertices(D, q_root_side, side);
-        long iq = lround((double)root->index / (double)(Ls ? Ls : 1) * (double)L);
-        iq = iq < 1 ? 1 : iq > (long)L - 1 ? (long)L - 1 : iq;
-        uint32_t v = side[iq], e = SQ_NONE;
-        for (int d = -1; d <= 1 && e == SQ_NONE; d += 2) {
-            uint32_t w = side[iq + d], qh = q_inner_he(Q, v, w);
-            if (qh != SQ_NONE && Q->he_vert[qh] == v)
-                e = s_he_in_quad(S, Q->he_face[qh], T->closed_of[v], T->closed_of[w]);
-        }
-        if (e == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "tree copy: no root halfedge on side %u", q_root_side);
-            goto done;
-        }
-        T->root = T->closed_of[v], T->root_side = q_root_side, T->root_he = e, T->root_pos = (uint32_t)iq;
-    }
+    st = place_root(T, D, G, root, q_root_side, err);
+    if (st) goto done;
     R.snode[cone[0]] = T->cone[0];
     T->tree_step[T->cone[0]] = 0;
     for (uint32_t j = 1; j <= n && st == SQ_OK; j++) {
@@ -503,7 +503,7 @@ sq_status sq_qtri_replicate(sq_qtri *T, const sq_domain *D, const sq_mesh *m, co
     }
 done:
     free(R.step_of), free(R.snode), free(R.list);
-    free(path), free(side), free(cone_free);
+    free(path), free(cone_free);
     return st;
 }
 
