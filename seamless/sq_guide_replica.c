@@ -208,6 +208,26 @@ static int end_ok_(void *user, uint32_t x, uint32_t u)
     return res;
 }
 
+/* The free region of Q around qv[j]: region[w] = j for the interior
+ * vertices of Q reached from it through interior edges and free regular
+ * vertices (no boundary, no tree); queue: scratch. */
+static void mark_region(const replica *R, uint32_t j, const uint8_t *bnd, uint32_t *region, uint32_t *queue)
+{
+    const sq_metapolygon *Q = R->Q;
+    uint32_t qh = 0, qt = 0;
+    region[R->qv[j]] = j, queue[qt++] = R->qv[j];
+    while (qh < qt) {
+        uint32_t v = queue[qh++], h0 = Q->v_he[v], h = h0;
+        do {
+            uint32_t w = Q->he_vert[Q->he_next[h]];
+            int interior = Q->he_face[h] != SQ_NONE && Q->he_face[Q->he_twin[h]] != SQ_NONE;
+            h = Q->he_next[Q->he_twin[h]];
+            if (!interior || region[w] == j || bnd[w] || Q->v_nface[w] != 4 || R->qowner[w] != SQ_NONE) continue;
+            region[w] = j, queue[qt++] = w;
+        } while (h != h0);
+    }
+}
+
 /* Seed 9.4 on both disks at once. Step j: the surface path from cone j to
  * the nearest tree vertex x (sq_guide_surface_path), then Q's path from
  * qv[j] to the copy of x (or into the copy of x's segment) in the same
@@ -225,21 +245,7 @@ static sq_status grow_step(replica *R, uint32_t j, const uint8_t *sblocked, doub
     const sq_mesh *m = R->m;
     const sq_metapolygon *Q = R->Q;
     uint32_t cand[64], qcand[64];
-    {
-        /* the free region of Q around qv[j] */
-        uint32_t qh = 0, qt = 0;
-        region[R->qv[j]] = j, queue[qt++] = R->qv[j];
-        while (qh < qt) {
-            uint32_t v = queue[qh++], h0 = Q->v_he[v], h = h0;
-            do {
-                uint32_t w = Q->he_vert[Q->he_next[h]];
-                int interior = Q->he_face[h] != SQ_NONE && Q->he_face[Q->he_twin[h]] != SQ_NONE;
-                h = Q->he_next[Q->he_twin[h]];
-                if (!interior || region[w] == j || bnd[w] || Q->v_nface[w] != 4 || R->qowner[w] != SQ_NONE) continue;
-                region[w] = j, queue[qt++] = w;
-            } while (h != h0);
-        }
-    }
+    mark_region(R, j, bnd, region, queue);
     for (uint32_t tries = 0; tries < 256; tries++) {
         uint32_t nt = 0;
         int nomem = 0;
@@ -376,6 +382,64 @@ static sq_status grow_step(replica *R, uint32_t j, const uint8_t *sblocked, doub
     return sq_error_set(err, SQ_ERR_SOLVER, "cone tree pair: step %u finds no place in Q", j);
 }
 
+static void replica_free(replica *R)
+{
+    free(R->soff), free(R->step), free(R->qv), free(R->spath_cone), free(R->qoff), free(R->spath);
+    free(R->sowner), free(R->sidx), free(R->node_q), free(R->qowner), free(R->qidx), free(R->qtree);
+    free(R->qpath);
+}
+
+/* Q's root path: breadth-first from the root cone s to the boundary vertex
+ * standing for the surface root (the cheapest by rcost), through free
+ * regular interior vertices; its edges appended to edges (*ne), the path
+ * recorded as R's path 0; *qroot_out: its end on Q's boundary. dist
+ * (UINT32_MAX outside a search), par, queue: scratch. */
+static sq_status q_root_path(replica *R, uint32_t s, const uint8_t *bnd, const double *rcost, uint32_t *dist,
+                             uint32_t *par, uint32_t *queue, uint32_t *edges, uint32_t *ne, uint32_t *qroot_out,
+                             sq_error *err)
+{
+    const sq_metapolygon *Q = R->Q;
+    uint32_t qh = 0, qt = 0, best_from = SQ_NONE, qroot = SQ_NONE;
+    double best_cost = INFINITY;
+    dist[s] = 0, par[s] = SQ_NONE, queue[qt++] = s;
+    while (qh < qt) {
+        uint32_t v = queue[qh++];
+        if ((double)dist[v] + 1 > best_cost) break;
+        uint32_t h0 = Q->v_he[v], h = h0;
+        do {
+            uint32_t w = Q->he_vert[Q->he_next[h]];
+            int interior = Q->he_face[h] != SQ_NONE && Q->he_face[Q->he_twin[h]] != SQ_NONE;
+            h = Q->he_next[Q->he_twin[h]];
+            if (!interior || w == s) continue;
+            if (bnd[w]) {
+                if (Q->v_nface[w] == 2 && isfinite(rcost[w]) && (double)dist[v] + 1 + rcost[w] < best_cost)
+                    best_cost = (double)dist[v] + 1 + rcost[w], qroot = w, best_from = v;
+                continue;
+            }
+            if (dist[w] != UINT32_MAX || Q->v_nface[w] != 4) continue;
+            dist[w] = dist[v] + 1, par[w] = v, queue[qt++] = w;
+        } while (h != h0);
+    }
+    uint32_t qlen = qroot != SQ_NONE ? dist[best_from] + 2 : 0;
+    for (uint32_t k = 0; k < qt; k++) dist[queue[k]] = UINT32_MAX;
+    if (qroot == SQ_NONE) return sq_error_set(err, SQ_ERR_SOLVER, "cone tree pair: the root cone cannot reach its side of Q");
+    for (uint32_t y = best_from, k = qlen - 1, prev = qroot; y != SQ_NONE; prev = y, y = par[y]) {
+        uint32_t h0 = Q->v_he[y], h = h0;
+        while (Q->he_vert[Q->he_next[h]] != prev) {
+            h = Q->he_next[Q->he_twin[h]];
+            if (h == h0) break;
+        }
+        edges[(*ne)++] = h;
+        R->qtree[h] = R->qtree[Q->he_twin[h]] = 1;
+        R->qpath[--k] = y;
+        R->qowner[y] = 0, R->qidx[y] = k;
+    }
+    R->qpath[qlen - 1] = qroot;
+    R->qoff[0] = 0, R->qoff[1] = R->nq = qlen;
+    *qroot_out = qroot;
+    return SQ_OK;
+}
+
 sq_status sq_guide_tree_pair(const sq_metapolygon *Q, const uint32_t *qv, const sq_mesh *m, const sq_cut_graph *G,
                              const uint32_t *cone, uint32_t n, uint32_t root_step, sq_guide_root_cost_fn root_cost,
                              void *user, uint32_t *tree_next, uint32_t *att_vertex, uint32_t *att_qvertex,
@@ -461,47 +525,8 @@ sq_status sq_guide_tree_pair(const sq_metapolygon *Q, const uint32_t *qv, const 
             R.sowner[R.spath[i]] = 0, R.sidx[R.spath[i]] = i;
             tree_next[R.spath[i]] = R.spath[i + 1];
         }
-        /* Q's: breadth-first from the cone to the side standing for it */
-        uint32_t s = qv[root_step], qh = 0, qt = 0, best_from = SQ_NONE;
-        double best_cost = INFINITY;
-        dist[s] = 0, par[s] = SQ_NONE, queue[qt++] = s;
-        while (qh < qt) {
-            uint32_t v = queue[qh++];
-            if ((double)dist[v] + 1 > best_cost) break;
-            uint32_t h0 = Q->v_he[v], h = h0;
-            do {
-                uint32_t w = Q->he_vert[Q->he_next[h]];
-                int interior = Q->he_face[h] != SQ_NONE && Q->he_face[Q->he_twin[h]] != SQ_NONE;
-                h = Q->he_next[Q->he_twin[h]];
-                if (!interior || w == s) continue;
-                if (bnd[w]) {
-                    if (Q->v_nface[w] == 2 && isfinite(rcost[w]) && (double)dist[v] + 1 + rcost[w] < best_cost)
-                        best_cost = (double)dist[v] + 1 + rcost[w], qroot = w, best_from = v;
-                    continue;
-                }
-                if (dist[w] != UINT32_MAX || Q->v_nface[w] != 4) continue;
-                dist[w] = dist[v] + 1, par[w] = v, queue[qt++] = w;
-            } while (h != h0);
-        }
-        uint32_t qlen = qroot != SQ_NONE ? dist[best_from] + 2 : 0;
-        for (uint32_t k = 0; k < qt; k++) dist[queue[k]] = UINT32_MAX;
-        if (qroot == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_SOLVER, "cone tree pair: the root cone cannot reach its side of Q");
-            goto done;
-        }
-        for (uint32_t y = best_from, k = qlen - 1, prev = qroot; y != SQ_NONE; prev = y, y = par[y]) {
-            uint32_t h0 = Q->v_he[y], h = h0;
-            while (Q->he_vert[Q->he_next[h]] != prev) {
-                h = Q->he_next[Q->he_twin[h]];
-                if (h == h0) break;
-            }
-            edges[ne++] = h;
-            R.qtree[h] = R.qtree[Q->he_twin[h]] = 1;
-            R.qpath[--k] = y;
-            R.qowner[y] = 0, R.qidx[y] = k;
-        }
-        R.qpath[qlen - 1] = qroot;
-        R.qoff[0] = 0, R.qoff[1] = R.nq = qlen;
+        st = q_root_path(&R, qv[root_step], bnd, rcost, dist, par, queue, edges, &ne, &qroot, err);
+        if (st) goto done;
         R.node_q[root->vertex] = qroot;
     }
     for (uint32_t t = 1; t < n && st == SQ_OK; t++)
@@ -509,19 +534,7 @@ sq_status sq_guide_tree_pair(const sq_metapolygon *Q, const uint32_t *qv, const 
     if (st) goto done;
     st = sq_cone_tree_from_edges(Q, qroot, edges, ne, T, err);
 done:
-    free(R.soff);
-    free(R.step);
-    free(R.qv);
-    free(R.spath_cone);
-    free(R.qoff);
-    free(R.spath);
-    free(R.sowner);
-    free(R.sidx);
-    free(R.node_q);
-    free(R.qowner);
-    free(R.qidx);
-    free(R.qtree);
-    free(R.qpath);
+    replica_free(&R);
     free(sblocked);
     free(bnd);
     free(sdist);
