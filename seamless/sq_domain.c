@@ -200,6 +200,39 @@ sq_status sq_domain_order(const uint32_t *val, uint32_t n, int keep, uint32_t *o
     return sq_valence_check_sequence(out, n, NULL, err);
 }
 
+/* D's side pattern: opt's, or the canonical one of the genus; k sides,
+ * that genus. */
+static sq_status set_pattern(sq_domain *D, uint32_t genus, uint32_t k, const sq_domain_options *opt, sq_error *err)
+{
+    sq_status st;
+    if (opt && opt->pattern) st = sq_pattern_copy(&D->pattern, opt->pattern, err);
+    else st = sq_pattern_canonical(genus, &D->pattern, err);
+    if (st == SQ_OK && D->pattern.k != k)
+        st = sq_error_set(err, SQ_ERR_ARGUMENT, "the pattern has %u sides, genus %u needs %u", D->pattern.k, genus, k);
+    if (st == SQ_OK) {
+        sq_pattern_info info;
+        st = sq_pattern_validate(&D->pattern, &info, err);
+        if (st == SQ_OK && info.genus != genus)
+            st = sq_error_set(err, SQ_ERR_ARGUMENT, "the pattern has genus %u, not %u", info.genus, genus);
+    }
+    return st;
+}
+
+/* After seed 6.1's padding: the quads added as the solver predicted
+ * (expect_added; UINT64_MAX: no prediction) and every side as long as its
+ * partner. */
+static sq_status check_padded(const sq_domain *D, uint64_t expect_added, sq_error *err)
+{
+    if (expect_added != UINT64_MAX && D->quads_added != expect_added)
+        return sq_error_set(err, SQ_ERR_INTERNAL, "padding added %llu quads, the solver predicted %llu",
+                            (unsigned long long)D->quads_added, (unsigned long long)expect_added);
+    for (uint32_t i = 0; i < D->k; i++)
+        if (D->side_len[i] != D->side_len[D->pattern.partner[i]])
+            return sq_error_set(err, SQ_ERR_INTERNAL, "after padding side %u has %u edges, its partner %u has %u", i,
+                                D->side_len[i], D->pattern.partner[i], D->side_len[D->pattern.partner[i]]);
+    return SQ_OK;
+}
+
 sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncones,
                           const sq_domain_options *opt, sq_domain *D, sq_error *err)
 {
@@ -274,19 +307,7 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
     sq_metapolygon_init(&sub.mesh);
     sq_mp_quads_free(&sub);
 
-    /* the pattern */
-    if (opt && opt->pattern) st = sq_pattern_copy(&D->pattern, opt->pattern, err);
-    else st = sq_pattern_canonical(genus, &D->pattern, err);
-    if (st == SQ_OK && D->pattern.k != k)
-        st = sq_error_set(err, SQ_ERR_ARGUMENT, "the pattern has %u sides, genus %u needs %u",
-                          D->pattern.k, genus, k);
-    if (st == SQ_OK) {
-        sq_pattern_info info;
-        st = sq_pattern_validate(&D->pattern, &info, err);
-        if (st == SQ_OK && info.genus != genus)
-            st = sq_error_set(err, SQ_ERR_ARGUMENT, "the pattern has genus %u, not %u",
-                              info.genus, genus);
-    }
+    st = set_pattern(D, genus, k, opt, err);
     if (st) {
         free(corner_v), free(len);
         goto fail;
@@ -357,18 +378,7 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
             D->side_len[i] = len[(i + D->offset) % k];
         }
         D->quads_added = D->quads.nf - D->quads_unpadded;
-        if (expect_added != UINT64_MAX && D->quads_added != expect_added)
-            st = sq_error_set(err, SQ_ERR_INTERNAL,
-                              "padding added %llu quads, the solver predicted %llu",
-                              (unsigned long long)D->quads_added,
-                              (unsigned long long)expect_added);
-        for (uint32_t i = 0; i < k && st == SQ_OK; i++) {
-            if (D->side_len[i] != D->side_len[D->pattern.partner[i]])
-                st = sq_error_set(err, SQ_ERR_INTERNAL,
-                                  "after padding side %u has %u edges, its partner %u has %u", i,
-                                  D->side_len[i], D->pattern.partner[i],
-                                  D->side_len[D->pattern.partner[i]]);
-        }
+        st = check_padded(D, expect_added, err);
         if (st == SQ_OK) simple_found = sq_domain_glued_is_simple(D);
     }
     for (uint32_t c = 0; c < nchoice; c++) free(choice[c].w);
