@@ -464,6 +464,37 @@ static int solve_candidate(const split *S, const uint32_t *partner, candidate *c
     return ok;
 }
 
+/* D, assembled from candidate c (of the ncand, on the splits S), is the
+ * domain: its statistics, the meta-6-gon as D->meta (its quads come first
+ * in Q) and the cones' order, the meta-6-gon's first. */
+static sq_status take_chosen(sq_domain *D, split *S, const candidate *cand, uint32_t ncand, const candidate *c,
+                             sq_error *err)
+{
+    D->offset = c->pattern;
+    D->offsets_feasible = 0; /* feasible patterns of the chosen split */
+    for (uint32_t e = 0; e < ncand; e++)
+        D->offsets_feasible += cand[e].split == c->split;
+    D->refine = 1;
+    const uint64_t q0 = S[c->split].quads0;
+    D->quads_unpadded = q0;
+    D->quads_added = D->quads.nf - q0;
+    /* the meta-6-gon is D->meta; its quads come first in Q */
+    split *sp = &S[c->split];
+    sq_metapolygon_free(&D->meta);
+    D->meta = sp->p[0].meta;
+    sq_metapolygon_init(&sp->p[0].meta);
+    D->nf_unpadded = sp->p[0].sub.mesh.nf;
+    free(D->f_meta_face);
+    D->f_meta_face = malloc(((size_t)D->nf_unpadded + 1) * sizeof *D->f_meta_face);
+    if (!D->f_meta_face) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    for (uint32_t f = 0; f < D->nf_unpadded; f++)
+        D->f_meta_face[f] = D->meta.he_face[sp->p[0].sub.f_origin[f]];
+    memcpy(D->order, sp->p[0].order, (size_t)sp->p[0].n * sizeof *D->order);
+    memcpy(D->order + sp->p[0].n, sp->p[1].order,
+           (size_t)sp->p[1].n * sizeof *D->order);
+    return SQ_OK;
+}
+
 sq_status sq_domain_build_genus1(const uint32_t *irr, uint32_t n, const sq_domain_options *opt,
                                  sq_domain *D, sq_error *err)
 {
@@ -589,32 +620,7 @@ sq_status sq_domain_build_genus1(const uint32_t *irr, uint32_t n, const sq_domai
                                       D->side_len[D->pattern.partner[i]]);
             if (st) break;
             found = sq_domain_glued_is_simple(D);
-            if (found) {
-                D->offset = c->pattern;
-                D->offsets_feasible = 0; /* feasible patterns of the chosen split */
-                for (uint32_t e = 0; e < ncand; e++)
-                    D->offsets_feasible += cand[e].split == c->split;
-                D->refine = 1;
-                D->quads_unpadded = q0;
-                D->quads_added = D->quads.nf - q0;
-                /* the meta-6-gon is D->meta; its quads come first in Q */
-                split *sp = &S[c->split];
-                sq_metapolygon_free(&D->meta);
-                D->meta = sp->p[0].meta;
-                sq_metapolygon_init(&sp->p[0].meta);
-                D->nf_unpadded = sp->p[0].sub.mesh.nf;
-                free(D->f_meta_face);
-                D->f_meta_face = malloc(((size_t)D->nf_unpadded + 1) * sizeof *D->f_meta_face);
-                if (!D->f_meta_face) {
-                    st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-                    break;
-                }
-                for (uint32_t f = 0; f < D->nf_unpadded; f++)
-                    D->f_meta_face[f] = D->meta.he_face[sp->p[0].sub.f_origin[f]];
-                memcpy(D->order, sp->p[0].order, (size_t)sp->p[0].n * sizeof *D->order);
-                memcpy(D->order + sp->p[0].n, sp->p[1].order,
-                       (size_t)sp->p[1].n * sizeof *D->order);
-            }
+            if (found) st = take_chosen(D, S, cand, ncand, c, err);
         }
     }
     if (st == SQ_OK && !found)

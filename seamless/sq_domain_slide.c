@@ -228,6 +228,55 @@ static sq_status piece_disk(const sq_metapolygon *Q0, const uint8_t *face_piece,
     return st;
 }
 
+/* Faces of piece A (face_piece 0, the rest 1): reachable from the face at
+ * boundary position s->ps without crossing the sequence s (blocked: its
+ * halfedges, set here). queue: scratch. */
+static sq_status mark_piece_a(const sq_metapolygon *Q0, const slide_ctx *c, const slide_seq *s, uint8_t *blocked,
+                              uint8_t *face_piece, uint32_t *queue, sq_error *err)
+{
+    for (uint32_t t = 0, g = s->first_he; t < s->len; t++) {
+        blocked[g] = blocked[Q0->he_twin[g]] = 1;
+        g = Q0->he_next[Q0->he_twin[Q0->he_next[g]]];
+    }
+    memset(face_piece, 1, Q0->nf);
+    const uint32_t f0 = Q0->he_face[Q0->he_twin[Q0->v_he[c->bnd[s->ps]]]];
+    uint32_t head = 0, tail = 0;
+    face_piece[f0] = 0;
+    queue[tail++] = f0;
+    while (head < tail) {
+        const uint32_t f = queue[head++];
+        uint32_t h = Q0->f_he[f];
+        for (uint32_t i = 0; i < Q0->f_valence[f]; i++, h = Q0->he_next[h]) {
+            if (blocked[h]) continue;
+            const uint32_t g = Q0->he_face[Q0->he_twin[h]];
+            if (g == SQ_NONE || face_piece[g] == 0) continue;
+            face_piece[g] = 0;
+            queue[tail++] = g;
+        }
+    }
+    if (tail == Q0->nf) return sq_error_set(err, SQ_ERR_INTERNAL, "the straight sequence does not split Q");
+    return SQ_OK;
+}
+
+/* The slide's description (sq_slide_info) for sequence s, pieces of nA and
+ * nB sides padded by w, the seam from seam0 to seam1. */
+static void fill_info(sq_slide_info *info, const slide_ctx *c, const slide_seq *s, uint32_t nA, uint32_t nB,
+                      const int64_t *w, uint32_t seam0, uint32_t seam1)
+{
+    info->start_vertex = c->bnd[s->ps];
+    info->end_vertex = c->bnd[s->pe];
+    info->start_side = c->side_at[s->ps];
+    info->start_pos = s->ps - c->cpos[info->start_side];
+    info->end_side = c->side_at[s->pe];
+    info->end_pos = s->pe - c->cpos[info->end_side];
+    info->length = s->len;
+    info->corners[0] = nA;
+    info->corners[1] = nB;
+    info->shift = w[0] - w[nA + nB - 2];
+    info->seam_start = seam0;
+    info->seam_end = seam1;
+}
+
 /* Seed 6.4: split Q0 along sequence s, pad both pieces by w, glue them
  * back along the split sides (the slide) and install the result in D. */
 static sq_status build_candidate(sq_domain *D, const slide_ctx *c, const uint32_t *fmf0,
@@ -257,34 +306,8 @@ static sq_status build_candidate(sq_domain *D, const slide_ctx *c, const uint32_
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
         goto done;
     }
-    /* faces of piece A: reachable from the face at boundary position ps
-     * without crossing the sequence */
-    for (uint32_t t = 0, g = s->first_he; t < s->len; t++) {
-        blocked[g] = blocked[Q0->he_twin[g]] = 1;
-        g = Q0->he_next[Q0->he_twin[Q0->he_next[g]]];
-    }
-    memset(face_piece, 1, Q0->nf);
-    {
-        const uint32_t f0 = Q0->he_face[Q0->he_twin[Q0->v_he[c->bnd[s->ps]]]];
-        uint32_t head = 0, tail = 0;
-        face_piece[f0] = 0;
-        queue[tail++] = f0;
-        while (head < tail) {
-            const uint32_t f = queue[head++];
-            uint32_t h = Q0->f_he[f];
-            for (uint32_t i = 0; i < Q0->f_valence[f]; i++, h = Q0->he_next[h]) {
-                if (blocked[h]) continue;
-                const uint32_t g = Q0->he_face[Q0->he_twin[h]];
-                if (g == SQ_NONE || face_piece[g] == 0) continue;
-                face_piece[g] = 0;
-                queue[tail++] = g;
-            }
-        }
-        if (tail == Q0->nf) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "the straight sequence does not split Q");
-            goto done;
-        }
-    }
+    st = mark_piece_a(Q0, c, s, blocked, face_piece, queue, err);
+    if (st) goto done;
     /* both pieces as disks, their corners and sides */
     for (uint8_t p = 0; p < 2 && !st; p++)
         st = piece_disk(Q0, face_piece, p, lv[p], forig[p], &nf0[p], &P[p], err);
@@ -395,20 +418,7 @@ static sq_status build_candidate(sq_domain *D, const slide_ctx *c, const uint32_
     D->offset = off;
     D->refine = 1;
     D->quads_added = D->quads.nf - D->quads_unpadded;
-    if (info) {
-        info->start_vertex = c->bnd[s->ps];
-        info->end_vertex = c->bnd[s->pe];
-        info->start_side = c->side_at[s->ps];
-        info->start_pos = s->ps - c->cpos[info->start_side];
-        info->end_side = c->side_at[s->pe];
-        info->end_pos = s->pe - c->cpos[info->end_side];
-        info->length = s->len;
-        info->corners[0] = nA;
-        info->corners[1] = nB;
-        info->shift = w[0] - w[ns - 2];
-        info->seam_start = seam0;
-        info->seam_end = seam1;
-    }
+    if (info) fill_info(info, c, s, nA, nB, w, seam0, seam1);
 done:
     sq_metapolygon_free(&P[0]), sq_metapolygon_free(&P[1]), sq_metapolygon_free(&M);
     free(face_piece), free(blocked), free(queue), free(lv[0]), free(lv[1]);

@@ -663,10 +663,10 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
     out->expected = expected;
     if (over) /* the sample stopped at its cap: expected is a lower bound */
         return sq_error_set(err, SQ_ERR_SOLVER,
-                            "overlay: at least %llu crossings of surface and domain edges expected, more than a "
-                            "budget of %llu allows (a sample of every %u-th domain triangle alone made %u before "
-                            "it stopped): the two disk maps differ too much",
-                            (unsigned long long)expected, (unsigned long long)budget_now(max_crossings, limit),
+                            "overlay: more than %llu crossings of surface and domain edges expected (at least "
+                            "%llu: a sample of every %u-th domain triangle alone made %u before it stopped): the "
+                            "two disk maps differ too much",
+                            (unsigned long long)budget_now(max_crossings, limit), (unsigned long long)expected,
                             SPLIT_STRIDE, sample_nx);
     sq_status st = check_expected(expected, sample_nx, max_crossings, max_expected, limit, err);
     if (st) return st;
