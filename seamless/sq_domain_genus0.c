@@ -597,6 +597,94 @@ static uint64_t best_total(const g0_pieces *P)
     return best + P->quads;
 }
 
+/* Step 4: D from the pieces (best), the layout chosen, the glued sphere G
+ * (val: its scratch; cut: the regular edge to cut it along). Faces:
+ * group 0's subdivision quads first (they index D->meta), then the other
+ * groups', then the padding quads. */
+static sq_status assemble_domain(sq_domain *D, const g0_pieces *best, const g0_layout *chosen, g0_padded *G,
+                                 uint32_t *val, uint32_t cut, uint32_t n, sq_error *err)
+{
+    sq_status st = SQ_OK;
+    uint32_t *perm = malloc(((size_t)G->nf + 1) * sizeof *perm);
+    uint32_t *fv2 = malloc(4 * ((size_t)G->nf + 1) * sizeof *fv2);
+    uint32_t *origin = malloc(((size_t)G->nf + 1) * sizeof *origin);
+    if (!perm || !fv2 || !origin) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    uint32_t first[4], c = 0, slot0 = 0;
+    if (st == SQ_OK) {
+        for (int j = 0; j < 4; j++) {
+            first[j] = j ? first[j - 1] + G->W[j - 1].nf : 0;
+            if (chosen->pc[j] == 0) slot0 = (uint32_t)j;
+        }
+        /* subdivision quads of slot0, then of the others, then padding */
+        for (uint32_t pass = 0; pass < 3; pass++) {
+            for (uint32_t j = 0; j < 4; j++) {
+                uint32_t nsub = best->p[chosen->pc[j]].sub.mesh.nf;
+                uint32_t lo = pass == 2 ? nsub : 0, hi = pass == 2 ? G->W[j].nf : nsub;
+                if ((pass == 0) != (j == slot0) && pass != 2) continue;
+                for (uint32_t f = lo; f < hi; f++) {
+                    origin[c] = f;
+                    perm[c++] = first[j] + f;
+                }
+            }
+        }
+        assert(c == G->nf);
+        uint32_t cut_new = SQ_NONE;
+        for (uint32_t f = 0; f < G->nf; f++) {
+            memcpy(fv2 + 4 * (size_t)f, G->fv + 4 * (size_t)perm[f], 4 * sizeof *fv2);
+            if (perm[f] == cut / 4) cut_new = 4 * f + cut % 4;
+        }
+        memcpy(G->fv, fv2, 4 * (size_t)G->nf * sizeof *fv2);
+        /* re-sort the keys for the new face order (same edges) */
+        for (uint32_t h = 0; h < 4 * G->nf; h++) {
+            uint32_t f = h / 4, i = h % 4;
+            G->key[h] = (uint64_t)G->fv[h] << 32 | G->fv[4 * f + (i + 1) % 4];
+        }
+        qsort(G->key, 4 * (size_t)G->nf, sizeof *G->key, cmp_u64);
+        st = quads_from_sphere(G, val, cut_new, &D->quads, err);
+    }
+    const g0_piece *p0 = &best->p[0];
+    uint32_t nf0 = p0->sub.mesh.nf;
+    if (st == SQ_OK) {
+        D->k = 2;
+        D->offset = 0;
+        D->refine = 1;
+        D->offsets_feasible = 1;
+        D->quads_unpadded = best->quads;
+        D->quads_added = chosen->added;
+        D->nf_unpadded = nf0;
+        D->f_meta_face = malloc(((size_t)nf0 + 1) * sizeof *D->f_meta_face);
+        D->corner_vert = malloc(2 * sizeof *D->corner_vert);
+        D->side_len = malloc(2 * sizeof *D->side_len);
+        D->padding = calloc(2 + 8, sizeof *D->padding);
+        if (!D->f_meta_face || !D->corner_vert || !D->side_len || !D->padding)
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    }
+    if (st == SQ_OK) st = sq_metapolygon_copy(&D->meta, &p0->meta, err);
+    if (st == SQ_OK) st = sq_pattern_alloc(&D->pattern, 2, err);
+    if (st == SQ_OK) {
+        for (uint32_t f = 0; f < nf0; f++)
+            D->f_meta_face[f] = D->meta.he_face[p0->sub.f_origin[origin[f]]];
+        D->pattern.partner[0] = 1, D->pattern.partner[1] = 0;
+        D->corner_vert[0] = D->quads.he_vert[D->quads.bnd_he];
+        D->corner_vert[1] = D->quads.he_vert[D->quads.he_next[D->quads.bnd_he]];
+        D->side_len[0] = D->side_len[1] = 1;
+        for (int j = 0; j < 4; j++) {
+            D->padding[2 + 2 * chosen->pc[j]] = (int64_t)chosen->x[j];
+            D->padding[3 + 2 * chosen->pc[j]] = (int64_t)chosen->y[j];
+        }
+        /* construction order: group 0 first */
+        uint32_t m = 0;
+        for (int g = 0; g < 4; g++) {
+            memcpy(D->order + m, best->p[g].order, best->p[g].ncones * sizeof *D->order);
+            m += best->p[g].ncones;
+        }
+        assert(m == n);
+        D->ncones = n;
+    }
+    free(perm), free(fv2), free(origin);
+    return st;
+}
+
 sq_status sq_domain_build_genus0(const uint32_t *irr, uint32_t n, const sq_domain_options *opt,
                                  sq_domain *D, sq_error *err)
 {
@@ -691,87 +779,8 @@ sq_status sq_domain_build_genus0(const uint32_t *irr, uint32_t n, const sq_domai
                           "with a regular edge, even with %u extra layers",
                           MAX_EXTRA);
 
-    /* step 4: D. Faces: group 0's subdivision quads first (they index
-     * D->meta), then the other groups', then the padding quads. */
-    if (st == SQ_OK) {
-        uint32_t *perm = malloc(((size_t)G.nf + 1) * sizeof *perm);
-        uint32_t *fv2 = malloc(4 * ((size_t)G.nf + 1) * sizeof *fv2);
-        uint32_t *origin = malloc(((size_t)G.nf + 1) * sizeof *origin);
-        if (!perm || !fv2 || !origin) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        uint32_t first[4], c = 0, slot0 = 0;
-        if (st == SQ_OK) {
-            for (int j = 0; j < 4; j++) {
-                first[j] = j ? first[j - 1] + G.W[j - 1].nf : 0;
-                if (chosen.pc[j] == 0) slot0 = (uint32_t)j;
-            }
-            /* subdivision quads of slot0, then of the others, then padding */
-            for (uint32_t pass = 0; pass < 3; pass++) {
-                for (uint32_t j = 0; j < 4; j++) {
-                    uint32_t nsub = best.p[chosen.pc[j]].sub.mesh.nf;
-                    uint32_t lo = pass == 2 ? nsub : 0, hi = pass == 2 ? G.W[j].nf : nsub;
-                    if ((pass == 0) != (j == slot0) && pass != 2) continue;
-                    for (uint32_t f = lo; f < hi; f++) {
-                        origin[c] = f;
-                        perm[c++] = first[j] + f;
-                    }
-                }
-            }
-            assert(c == G.nf);
-            uint32_t cut_new = SQ_NONE;
-            for (uint32_t f = 0; f < G.nf; f++) {
-                memcpy(fv2 + 4 * (size_t)f, G.fv + 4 * (size_t)perm[f], 4 * sizeof *fv2);
-                if (perm[f] == cut / 4) cut_new = 4 * f + cut % 4;
-            }
-            memcpy(G.fv, fv2, 4 * (size_t)G.nf * sizeof *fv2);
-            /* re-sort the keys for the new face order (same edges) */
-            for (uint32_t h = 0; h < 4 * G.nf; h++) {
-                uint32_t f = h / 4, i = h % 4;
-                G.key[h] = (uint64_t)G.fv[h] << 32 | G.fv[4 * f + (i + 1) % 4];
-            }
-            qsort(G.key, 4 * (size_t)G.nf, sizeof *G.key, cmp_u64);
-            st = quads_from_sphere(&G, val, cut_new, &D->quads, err);
-        }
-        const g0_piece *p0 = &best.p[0];
-        uint32_t nf0 = p0->sub.mesh.nf;
-        if (st == SQ_OK) {
-            D->k = 2;
-            D->offset = 0;
-            D->refine = 1;
-            D->offsets_feasible = 1;
-            D->quads_unpadded = best.quads;
-            D->quads_added = chosen.added;
-            D->nf_unpadded = nf0;
-            D->f_meta_face = malloc(((size_t)nf0 + 1) * sizeof *D->f_meta_face);
-            D->corner_vert = malloc(2 * sizeof *D->corner_vert);
-            D->side_len = malloc(2 * sizeof *D->side_len);
-            D->padding = calloc(2 + 8, sizeof *D->padding);
-            if (!D->f_meta_face || !D->corner_vert || !D->side_len || !D->padding)
-                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        }
-        if (st == SQ_OK) st = sq_metapolygon_copy(&D->meta, &p0->meta, err);
-        if (st == SQ_OK) st = sq_pattern_alloc(&D->pattern, 2, err);
-        if (st == SQ_OK) {
-            for (uint32_t f = 0; f < nf0; f++)
-                D->f_meta_face[f] = D->meta.he_face[p0->sub.f_origin[origin[f]]];
-            D->pattern.partner[0] = 1, D->pattern.partner[1] = 0;
-            D->corner_vert[0] = D->quads.he_vert[D->quads.bnd_he];
-            D->corner_vert[1] = D->quads.he_vert[D->quads.he_next[D->quads.bnd_he]];
-            D->side_len[0] = D->side_len[1] = 1;
-            for (int j = 0; j < 4; j++) {
-                D->padding[2 + 2 * chosen.pc[j]] = (int64_t)chosen.x[j];
-                D->padding[3 + 2 * chosen.pc[j]] = (int64_t)chosen.y[j];
-            }
-            /* construction order: group 0 first */
-            uint32_t m = 0;
-            for (int g = 0; g < 4; g++) {
-                memcpy(D->order + m, best.p[g].order, best.p[g].ncones * sizeof *D->order);
-                m += best.p[g].ncones;
-            }
-            assert(m == n);
-            D->ncones = n;
-        }
-        free(perm), free(fv2), free(origin);
-    }
+    /* step 4: D */
+    if (st == SQ_OK) st = assemble_domain(D, &best, &chosen, &G, val, cut, n, err);
     padded_free(&G);
     free(val);
     pieces_free(&best);
