@@ -54,6 +54,51 @@ static int by_len(const void *a, const void *b)
     return x->off < y->off ? -1 : (x->off > y->off);
 }
 
+/* Appends candidate c (its halfedges he) to pool p; 0: out of memory. */
+static int pool_append(sq_cut_pool *p, const sq_cut_cand *c, const uint32_t *he)
+{
+    if (p->n == p->cap || p->nhe + c->n > p->hecap) {
+        const uint32_t cap = p->cap ? 2 * p->cap : 8;
+        uint32_t hecap = p->hecap ? p->hecap : 1024;
+        while (hecap < p->nhe + c->n)
+            hecap *= 2;
+        sq_cut_cand *nc = realloc(p->c, (size_t)cap * sizeof *nc);
+        if (nc)
+            p->c = nc, p->cap = cap;
+        uint32_t *nh = realloc(p->he, (size_t)hecap * sizeof *nh);
+        if (nh)
+            p->he = nh, p->hecap = hecap;
+        if (!nc || !nh)
+            return 0;
+    }
+    p->c[p->n] = *c;
+    p->c[p->n].off = p->nhe;
+    memcpy(p->he + p->nhe, he, (size_t)c->n * sizeof *he);
+    p->nhe += c->n;
+    p->n++;
+    return 1;
+}
+
+/* out: the loops kept (genus g), in the order they were kept. */
+static sq_status loops_output(const sq_cut_pool *keep, uint32_t g, sq_cut_loops *out, sq_error *err)
+{
+    const uint32_t nkept = keep->n;
+    out->genus = g;
+    out->nloops = nkept;
+    out->loop_off = malloc(((size_t)nkept + 1) * sizeof *out->loop_off);
+    out->loop_he = malloc(((size_t)keep->nhe + 1) * sizeof *out->loop_he);
+    out->loop_len = malloc(((size_t)nkept + 1) * sizeof *out->loop_len);
+    if (!out->loop_off || !out->loop_he || !out->loop_len)
+        return sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (loops)");
+    out->loop_off[0] = 0;
+    for (uint32_t i = 0; i < nkept; ++i) {
+        out->loop_off[i + 1] = out->loop_off[i] + keep->c[i].n;
+        out->loop_len[i] = keep->c[i].len;
+    }
+    memcpy(out->loop_he, keep->he, (size_t)keep->nhe * sizeof *keep->he);
+    return SQ_OK;
+}
+
 sq_status sq_cut_loops_find(const sq_mesh *m, const uint8_t *cone, const sq_cut_options *opt_in,
                             sq_cut_loops *out, sq_cut_stats *stats, sq_error *err)
 {
@@ -168,29 +213,10 @@ sq_status sq_cut_loops_find(const sq_mesh *m, const uint8_t *cone, const sq_cut_
             }
             for (k = 0; k < c->n; ++k)
                 blocked[m->he_vert[he[k]]] = 1;
-            /* copy into keep */
-            sq_cut_pool *p = &keep;
-            if (p->n == p->cap || p->nhe + c->n > p->hecap) {
-                const uint32_t cap = p->cap ? 2 * p->cap : 8;
-                uint32_t hecap = p->hecap ? p->hecap : 1024;
-                while (hecap < p->nhe + c->n)
-                    hecap *= 2;
-                sq_cut_cand *nc = realloc(p->c, (size_t)cap * sizeof *nc);
-                if (nc)
-                    p->c = nc, p->cap = cap;
-                uint32_t *nh = realloc(p->he, (size_t)hecap * sizeof *nh);
-                if (nh)
-                    p->he = nh, p->hecap = hecap;
-                if (!nc || !nh) {
-                    st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (loops)");
-                    goto done;
-                }
+            if (!pool_append(&keep, c, he)) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (loops)");
+                goto done;
             }
-            p->c[p->n] = *c;
-            p->c[p->n].off = p->nhe;
-            memcpy(p->he + p->nhe, he, (size_t)c->n * sizeof *he);
-            p->nhe += c->n;
-            p->n++;
             ++nkept;
             ++gained;
         }
@@ -206,27 +232,10 @@ sq_status sq_cut_loops_find(const sq_mesh *m, const uint8_t *cone, const sq_cut_
         }
     }
 
-    out->genus = g;
-    out->nloops = nkept;
-    out->loop_off = malloc(((size_t)nkept + 1) * sizeof *out->loop_off);
-    out->loop_he = malloc(((size_t)keep.nhe + 1) * sizeof *out->loop_he);
-    out->loop_len = malloc(((size_t)nkept + 1) * sizeof *out->loop_len);
-    if (!out->loop_off || !out->loop_he || !out->loop_len) {
-        sq_cut_loops_free(out);
-        st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (loops)");
-        goto done;
-    }
-    out->loop_off[0] = 0;
-    for (uint32_t i = 0; i < nkept; ++i) {
-        out->loop_off[i + 1] = out->loop_off[i] + keep.c[i].n;
-        out->loop_len[i] = keep.c[i].len;
-    }
-    memcpy(out->loop_he, keep.he, (size_t)keep.nhe * sizeof *keep.he);
-    st = sq_cut_loops_check(m, cone, out, err);
-    if (st != SQ_OK) {
-        stats_fail(stats, SQ_CUT_FAIL_CHECK, SQ_NONE, SQ_NONE);
-        sq_cut_loops_free(out);
-    }
+    st = loops_output(&keep, g, out, err);
+    if (st == SQ_OK) st = sq_cut_loops_check(m, cone, out, err);
+    if (st != SQ_OK && st != SQ_ERR_NOMEM) stats_fail(stats, SQ_CUT_FAIL_CHECK, SQ_NONE, SQ_NONE);
+    if (st != SQ_OK) sq_cut_loops_free(out);
 done:
     if (ws_ok)
         sq_cut_tc_ws_free(&ws);
