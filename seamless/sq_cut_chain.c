@@ -177,6 +177,137 @@ static double commit_path(const sq_mesh *m, uint8_t *cut, chain_ws *w)
 
 static int bit(uint64_t bits, uint32_t i) { return i < 64 ? (int)((bits >> i) & 1u) : 0; }
 
+/* Genus 1: p1 on L1+ to p1 on L1-, the shortest of evenly spaced p1
+ * (seed 7); the path cut, its length added to *length. */
+static sq_status torus_path(const sq_mesh *m, const uint8_t *cone, const sq_cut_loops *L, const uint32_t *plus,
+                            const uint32_t *minus, uint8_t *cut, chain_ws *w, double *length, sq_cut_stats *stats,
+                            sq_error *err)
+{
+    double len;
+    int nomem = 0;
+    const uint32_t a = L->loop_off[0], n = L->loop_off[1] - a;
+    const uint32_t samples = n < 16 ? n : 16;
+    double best = INFINITY;
+    uint32_t best_v = SQ_NONE;
+    for (uint32_t s = 0; s < samples; ++s) {
+        const uint32_t v = m->he_vert[L->loop_he[a + (uint32_t)((uint64_t)s * n / samples)]];
+        if (find_path(m, cone, cut, w, &plus[v], 1, &minus[v], 1, KEEP_ANY, &len,
+                      &nomem) &&
+            len < best) {
+            best = len;
+            best_v = v;
+        }
+        if (nomem)
+            break;
+    }
+    if (!nomem && best_v != SQ_NONE &&
+        !find_path(m, cone, cut, w, &plus[best_v], 1, &minus[best_v], 1, KEEP_ANY,
+                   &len, &nomem))
+        best_v = SQ_NONE;
+    if (nomem) return sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (chain)");
+    if (best_v == SQ_NONE) {
+        if (stats)
+            stats->failure = SQ_CUT_FAIL_NO_PATH, stats->where[0] = stats->where[1] = SQ_NONE;
+        return sq_error_set(err, SQ_ERR_ARGUMENT,
+                            "cut graph: no cone-free path crosses the loop of the torus "
+                            "(cones wall it in; an edge split would be needed)");
+    }
+    *length += commit_path(m, cut, w);
+    return SQ_OK;
+}
+
+/* Genus >= 2: the 2g - 1 paths of the hole chain (seed 7, [CSZZ19]), from
+ * L1+ to the + side of the nearest other loop, across each loop from its +
+ * to its - side, and back to p1 on L1-, each in the sector the rotation
+ * bits choose; the paths cut, their lengths added to *length. tg (the
+ * loops' vertices), visited (g): scratch. */
+static sq_status chain_paths(const sq_mesh *m, const uint8_t *cone, const sq_cut_loops *L, uint64_t rotation,
+                             const uint32_t *plus, const uint32_t *minus, const uint32_t *loop_of, uint32_t *tg,
+                             uint8_t *visited, uint8_t *cut, chain_ws *w, double *length, sq_cut_stats *stats,
+                             sq_error *err)
+{
+    const uint32_t g = L->nloops;
+    double len;
+    int nomem = 0;
+    uint32_t ns = 0, nt;
+    for (uint32_t k = L->loop_off[0]; k < L->loop_off[1]; ++k)
+        tg[ns++] = plus[m->he_vert[L->loop_he[k]]];
+    visited[0] = 1;
+    uint32_t *src = malloc((size_t)ns * sizeof *src);
+    if (!src) return sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (chain)");
+    memcpy(src, tg, (size_t)ns * sizeof *src);
+    uint32_t p1 = SQ_NONE, from = SQ_NONE; /* from: start wedge of the next path */
+    const char *what = NULL;
+    for (uint32_t step = 0; step < 2 * g - 1; ++step) {
+        const uint32_t *s = step == 0 ? src : &from;
+        const uint32_t nsrc = step == 0 ? ns : 1;
+        uint32_t arrive_loop = SQ_NONE, on_minus = 0, exclude = SQ_NONE;
+        nt = 0;
+        if (step % 2 == 1) {
+            /* a_i (+) to b_i (-) on the same loop, b_i != a_i */
+            arrive_loop = loop_of[m->he_vert[from]];
+            exclude = m->he_vert[from];
+            for (uint32_t k = L->loop_off[arrive_loop]; k < L->loop_off[arrive_loop + 1]; ++k) {
+                const uint32_t v = m->he_vert[L->loop_he[k]];
+                if (v != exclude)
+                    tg[nt++] = minus[v];
+            }
+            on_minus = 1;
+            what = "from the + to the - side of a loop";
+        } else if (step == 2 * g - 2) {
+            tg[nt++] = minus[p1]; /* back to p1 on L1- */
+            what = "back to the first loop's - side";
+        } else {
+            for (uint32_t i = 1; i < g; ++i)
+                if (!visited[i])
+                    for (uint32_t k = L->loop_off[i]; k < L->loop_off[i + 1]; ++k)
+                        tg[nt++] = plus[m->he_vert[L->loop_he[k]]];
+            what = "to the + side of the next loop";
+        }
+        if (step == 2 * g - 2)
+            w->reserve_tag = 2; /* the last path may use p1's fan */
+        const uint32_t keep = step == 2 * g - 2 ? KEEP_ANY
+                              : bit(rotation, step) ? KEEP_SECOND : KEEP_FIRST;
+        if (!find_path(m, cone, cut, w, s, nsrc, tg, nt, keep, &len, &nomem)) {
+            free(src);
+            if (nomem) return sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (chain)");
+            const uint32_t v = m->he_vert[s[0]];
+            if (stats)
+                stats->failure = SQ_CUT_FAIL_NO_PATH, stats->where[0] = v,
+                stats->where[1] = SQ_NONE;
+            return sq_error_set(err, SQ_ERR_ARGUMENT,
+                                "cut graph: chain path %u of %u (%s) from vertex %u has no "
+                                "route avoiding cones and the cut (a narrow passage; an "
+                                "edge split would be needed)",
+                                step + 1, 2 * g - 1, what, v);
+        }
+        const uint32_t first = w->path[0], last = w->path[w->npath - 1];
+        const uint32_t y = sq_cut_dest(m, last);
+        if (step == 0) {
+            /* Keep the fan of p1 on the - side free for the last path:
+             * later paths could otherwise wall it in. */
+            p1 = m->he_vert[first];
+            for (uint32_t c = sq_cut_rot(m, minus[p1]); !cut[c]; c = sq_cut_rot(m, c))
+                w->reserved[sq_cut_dest(m, c)] = 1;
+        }
+        *length += commit_path(m, cut, w);
+        if (step == 2 * g - 2)
+            break;
+        /* The next path leaves y on the same side as this one arrived,
+         * in the sector chosen by the rotation bit (seamless-notes 6). */
+        const uint32_t q = m->he_twin[last];
+        const uint32_t bi = step; /* a_2, b_2, a_3, b_3, ... */
+        const uint32_t side_start = on_minus ? minus[y] : plus[y];
+        from = bit(rotation, bi) ? q : side_start;
+        if (step % 2 == 0) {
+            assert(loop_of[y] != SQ_NONE && !visited[loop_of[y]]);
+            visited[loop_of[y]] = 1;
+        }
+    }
+    free(src);
+    return SQ_OK;
+}
+
 sq_status sq_cut_chain(const sq_mesh *m, const uint8_t *cone, const sq_cut_loops *L,
                        uint64_t rotation, uint64_t flip, sq_cut_graph *out,
                        sq_cut_stats *stats, sq_error *err)
@@ -207,7 +338,6 @@ sq_status sq_cut_chain(const sq_mesh *m, const uint8_t *cone, const sq_cut_loops
     w.near = calloc(m->nv, sizeof *w.near);
     w.reserve_tag = 1;
     int heap_ok = sq_cut_heap_init(&w.heap, 1024);
-    int nomem = 0;
     if (!plus || !minus || !loop_of || !tg || !visited || !out->he_cut || !w.dist || !w.par ||
         !w.vstamp || !w.tstamp || !w.cutdeg || !w.path || !w.reserved || !w.near ||
         !heap_ok) {
@@ -247,126 +377,12 @@ sq_status sq_cut_chain(const sq_mesh *m, const uint8_t *cone, const sq_cut_loops
             out->length += sq_cut_he_length(m, h_out);
         }
     }
-    double len;
-    if (g == 1) {
-        /* p1 on L1+ to p1 on L1-: try evenly spaced p1, keep the shortest. */
-        const uint32_t a = L->loop_off[0], n = L->loop_off[1] - a;
-        const uint32_t samples = n < 16 ? n : 16;
-        double best = INFINITY;
-        uint32_t best_v = SQ_NONE;
-        for (uint32_t s = 0; s < samples; ++s) {
-            const uint32_t v = m->he_vert[L->loop_he[a + (uint32_t)((uint64_t)s * n / samples)]];
-            if (find_path(m, cone, cut, &w, &plus[v], 1, &minus[v], 1, KEEP_ANY, &len,
-                          &nomem) &&
-                len < best) {
-                best = len;
-                best_v = v;
-            }
-            if (nomem)
-                break;
-        }
-        if (!nomem && best_v != SQ_NONE &&
-            !find_path(m, cone, cut, &w, &plus[best_v], 1, &minus[best_v], 1, KEEP_ANY,
-                       &len, &nomem))
-            best_v = SQ_NONE;
-        if (nomem) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (chain)");
-            goto done;
-        }
-        if (best_v == SQ_NONE) {
-            if (stats)
-                stats->failure = SQ_CUT_FAIL_NO_PATH, stats->where[0] = stats->where[1] = SQ_NONE;
-            st = sq_error_set(err, SQ_ERR_ARGUMENT,
-                              "cut graph: no cone-free path crosses the loop of the torus "
-                              "(cones wall it in; an edge split would be needed)");
-            goto done;
-        }
-        out->length += commit_path(m, cut, &w);
-    } else {
-        /* Step 0: L1+ to the + side of the nearest other loop. */
-        uint32_t ns = 0, nt;
-        for (uint32_t k = L->loop_off[0]; k < L->loop_off[1]; ++k)
-            tg[ns++] = plus[m->he_vert[L->loop_he[k]]];
-        visited[0] = 1;
-        uint32_t *src = malloc((size_t)ns * sizeof *src);
-        if (!src) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (chain)");
-            goto done;
-        }
-        memcpy(src, tg, (size_t)ns * sizeof *src);
-        uint32_t p1 = SQ_NONE, from = SQ_NONE; /* from: start wedge of the next path */
-        const char *what = NULL;
-        for (uint32_t step = 0; step < 2 * g - 1; ++step) {
-            const uint32_t *s = step == 0 ? src : &from;
-            const uint32_t nsrc = step == 0 ? ns : 1;
-            uint32_t arrive_loop = SQ_NONE, on_minus = 0, exclude = SQ_NONE;
-            nt = 0;
-            if (step % 2 == 1) {
-                /* a_i (+) to b_i (-) on the same loop, b_i != a_i */
-                arrive_loop = loop_of[m->he_vert[from]];
-                exclude = m->he_vert[from];
-                for (uint32_t k = L->loop_off[arrive_loop]; k < L->loop_off[arrive_loop + 1]; ++k) {
-                    const uint32_t v = m->he_vert[L->loop_he[k]];
-                    if (v != exclude)
-                        tg[nt++] = minus[v];
-                }
-                on_minus = 1;
-                what = "from the + to the - side of a loop";
-            } else if (step == 2 * g - 2) {
-                tg[nt++] = minus[p1]; /* back to p1 on L1- */
-                what = "back to the first loop's - side";
-            } else {
-                for (uint32_t i = 1; i < g; ++i)
-                    if (!visited[i])
-                        for (uint32_t k = L->loop_off[i]; k < L->loop_off[i + 1]; ++k)
-                            tg[nt++] = plus[m->he_vert[L->loop_he[k]]];
-                what = "to the + side of the next loop";
-            }
-            if (step == 2 * g - 2)
-                w.reserve_tag = 2; /* the last path may use p1's fan */
-            const uint32_t keep = step == 2 * g - 2 ? KEEP_ANY
-                                  : bit(rotation, step) ? KEEP_SECOND : KEEP_FIRST;
-            if (!find_path(m, cone, cut, &w, s, nsrc, tg, nt, keep, &len, &nomem)) {
-                free(src);
-                if (nomem) {
-                    st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (chain)");
-                    goto done;
-                }
-                const uint32_t v = m->he_vert[s[0]];
-                if (stats)
-                    stats->failure = SQ_CUT_FAIL_NO_PATH, stats->where[0] = v,
-                    stats->where[1] = SQ_NONE;
-                st = sq_error_set(err, SQ_ERR_ARGUMENT,
-                                  "cut graph: chain path %u of %u (%s) from vertex %u has no "
-                                  "route avoiding cones and the cut (a narrow passage; an "
-                                  "edge split would be needed)",
-                                  step + 1, 2 * g - 1, what, v);
-                goto done;
-            }
-            const uint32_t first = w.path[0], last = w.path[w.npath - 1];
-            const uint32_t y = sq_cut_dest(m, last);
-            if (step == 0) {
-                /* Keep the fan of p1 on the - side free for the last path:
-                 * later paths could otherwise wall it in. */
-                p1 = m->he_vert[first];
-                for (uint32_t c = sq_cut_rot(m, minus[p1]); !cut[c]; c = sq_cut_rot(m, c))
-                    w.reserved[sq_cut_dest(m, c)] = 1;
-            }
-            out->length += commit_path(m, cut, &w);
-            if (step == 2 * g - 2)
-                break;
-            /* The next path leaves y on the same side as this one arrived,
-             * in the sector chosen by the rotation bit (seamless-notes 6). */
-            const uint32_t q = m->he_twin[last];
-            const uint32_t bi = step; /* a_2, b_2, a_3, b_3, ... */
-            const uint32_t side_start = on_minus ? minus[y] : plus[y];
-            from = bit(rotation, bi) ? q : side_start;
-            if (step % 2 == 0) {
-                assert(loop_of[y] != SQ_NONE && !visited[loop_of[y]]);
-                visited[loop_of[y]] = 1;
-            }
-        }
-        free(src);
+    sq_status sp = g == 1 ? torus_path(m, cone, L, plus, minus, cut, &w, &out->length, stats, err)
+                          : chain_paths(m, cone, L, rotation, plus, minus, loop_of, tg, visited, cut, &w,
+                                        &out->length, stats, err);
+    if (sp) {
+        st = sp;
+        goto done;
     }
     st = sq_cut_boundary_word(m, out, err);
     if (st == SQ_OK)
