@@ -470,6 +470,119 @@ typedef struct route_cand {
 } route_cand;
 
 
+/* The cones next to a free vertex that F reaches (F: from one side of the
+ * cut), nearest first, at most NEAR_CONES of them, into near_cone;
+ * returns their count. */
+static uint32_t nearest_cones(const steer_ws *w, const forest *F, near_entry *near_cone)
+{
+    const sq_mesh *m = w->m;
+    uint32_t nnear = 0;
+    for (uint32_t c = 0; c < m->nv; ++c) {
+        if (!w->cone[c]) continue;
+        double d = INFINITY;
+        const uint32_t h0 = m->v_he[c];
+        uint32_t h = h0;
+        do {
+            const uint32_t a = sq_cut_dest(m, h);
+            if (is_free(w, a) && F->dist[a] < d) d = F->dist[a];
+            h = sq_cut_rot(m, h);
+        } while (h != h0);
+        if (isfinite(d)) near_cone[nnear].c = c, near_cone[nnear++].d = d;
+    }
+    qsort(near_cone, nnear, sizeof *near_cone, near_cmp);
+    return nnear > NEAR_CONES ? NEAR_CONES : nnear;
+}
+
+/* Detours of the side lo..hi through cone c's ring edges that move a cone
+ * index not a multiple of 4 across the cut: per index the shortest, at
+ * most 4, into cand (*nc). Both halves from the whole side (F[0]); if c is
+ * seen from one side vertex x0 only, the halves from before and after x0
+ * (F[1], F[2]). 0: out of memory. */
+static int cone_detours(steer_ws *w, const sq_cut_graph *G, const int32_t *valence, forest *F, uint32_t c,
+                        uint32_t lo, uint32_t hi, route_cand *cand, uint32_t *nc_out)
+{
+    uint32_t nc = 0, x0 = SQ_NONE;
+    const sq_mesh *m = w->m;
+    for (int pass = 0; pass < 2 && nc == 0; ++pass) {
+        const forest *A = &F[0], *Bf = &F[0];
+        if (pass == 1) {
+            if (x0 == SQ_NONE || x0 <= lo || x0 >= hi) break;
+            if (!side_dijkstra(w, G, lo, x0, &F[1]) || !side_dijkstra(w, G, x0 + 1, hi, &F[2])) return 0;
+            A = &F[1], Bf = &F[2];
+        }
+        const uint32_t h0 = m->v_he[c];
+        uint32_t h = h0;
+        do {
+            const uint32_t ring = m->he_next[h];
+            h = sq_cut_rot(m, h);
+            for (int dir = 0; dir < 2; ++dir) {
+                const uint32_t ab = dir ? m->he_twin[ring] : ring;
+                const uint32_t a = m->he_vert[ab], b = sq_cut_dest(m, ab);
+                if (!is_free(w, a) || !is_free(w, b) || !isfinite(A->dist[a]) ||
+                    !isfinite(Bf->dist[b]))
+                    continue;
+                if (pass == 0 && x0 == SQ_NONE) x0 = A->src[a];
+                uint32_t na, nb;
+                const uint32_t n = build_detour(w, A, Bf, ab, &na, &nb);
+                if (!n) continue;
+                int bad = 0;
+                const long q = region_index(w, G, na, nb, valence, n, &bad);
+                if (bad || q % 4 == 0) continue;
+                const double len = A->dist[a] + Bf->dist[b] + sq_cut_he_length(m, ab);
+                uint32_t dup = nc;
+                for (uint32_t x = 0; x < nc; ++x)
+                    if (cand[x].q == q) dup = x;
+                if (dup < nc && len >= cand[dup].len) continue;
+                if (dup == nc) {
+                    if (nc == 4) continue;
+                    ++nc;
+                }
+                cand[dup].ab = ab, cand[dup].len = len, cand[dup].q = q;
+                cand[dup].pass = pass;
+            }
+        } while (h != h0);
+    }
+    *nc_out = nc;
+    return 1;
+}
+
+/* Each candidate detour applied to a copy of G's side s; the one that lowers
+ * the mismatch (below norm) the most, then the shortest, replaces *best
+ * (*best_norm, *best_len, *best_shift: its mismatch, length and corner
+ * shift). */
+static void pick_detour(steer_ws *w, const sq_cut_graph *G, const double *turn, const uint8_t *blocked,
+                        const forest *F, uint32_t s, const route_cand *cand, uint32_t nc, uint32_t norm,
+                        sq_cut_graph *best, uint32_t *best_norm, double *best_len, uint32_t *best_shift)
+{
+    const sq_mesh *m = w->m;
+    const uint8_t *cone = w->cone;
+    for (uint32_t x = 0; x < nc; ++x) {
+        const forest *A = cand[x].pass ? &F[1] : &F[0], *Bf = cand[x].pass ? &F[2] : &F[0];
+        uint32_t na, nb;
+        const uint32_t n = build_detour(w, A, Bf, cand[x].ab, &na, &nb);
+        sq_cut_graph cg;
+        sq_error e2;
+        uint32_t d = 0;
+        if (!n || apply_detour(m, cone, G, s, na, nb, w->route, n, &cg, &d, &e2) != SQ_OK) {
+            if (n) sq_cut_graph_free(&cg);
+            continue;
+        }
+        mismatch M2;
+        if (!compute_mismatch(m, &cg, turn, blocked, &M2)) {
+            sq_cut_graph_free(&cg);
+            continue;
+        }
+        const uint32_t nn = M2.norm;
+        mismatch_free(&M2);
+        if (nn < norm && (nn < *best_norm || (nn == *best_norm && cand[x].len < *best_len))) {
+            *best_norm = nn, *best_len = cand[x].len, *best_shift = d;
+            sq_cut_graph_free(best);
+            *best = cg;
+        } else
+            sq_cut_graph_free(&cg);
+}
+}
+
 sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const double *turn,
                              sq_cut_graph *G, sq_cut_steer_stats *stats, sq_error *err)
 {
@@ -546,93 +659,13 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
             for (int si = 0; si < 2; ++si) {
                 const uint32_t s = sides[si], lo = G->side_off[s], hi = G->side_off[s + 1];
                 if (!side_dijkstra(&w, G, lo, hi, &F[0])) goto nomem;
-                /* the cones nearest to the side first */
-                uint32_t nnear = 0;
-                for (uint32_t c = 0; c < m->nv; ++c) {
-                    if (!cone[c]) continue;
-                    double d = INFINITY;
-                    const uint32_t h0 = m->v_he[c];
-                    uint32_t h = h0;
-                    do {
-                        const uint32_t a = sq_cut_dest(m, h);
-                        if (is_free(&w, a) && F[0].dist[a] < d) d = F[0].dist[a];
-                        h = sq_cut_rot(m, h);
-                    } while (h != h0);
-                    if (isfinite(d)) near_cone[nnear].c = c, near_cone[nnear++].d = d;
-                }
-                qsort(near_cone, nnear, sizeof *near_cone, near_cmp);
-                if (nnear > NEAR_CONES) nnear = NEAR_CONES;
+                const uint32_t nnear = nearest_cones(&w, &F[0], near_cone);
                 for (uint32_t ci = 0; ci < nnear; ++ci) {
                     const uint32_t c = near_cone[ci].c;
-                    /* detours through c's ring edges: both halves from
-                     * the whole side; if c is seen from one side vertex
-                     * x0 only, the halves from before and after x0 */
-                    uint32_t nc = 0, x0 = SQ_NONE;
-                    for (int pass = 0; pass < 2 && nc == 0; ++pass) {
-                        const forest *A = &F[0], *Bf = &F[0];
-                        if (pass == 1) {
-                            if (x0 == SQ_NONE || x0 <= lo || x0 >= hi) break;
-                            if (!side_dijkstra(&w, G, lo, x0, &F[1]) || !side_dijkstra(&w, G, x0 + 1, hi, &F[2]))
-                                goto nomem;
-                            A = &F[1], Bf = &F[2];
-                        }
-                        const uint32_t h0 = m->v_he[c];
-                        uint32_t h = h0;
-                        do {
-                            const uint32_t ring = m->he_next[h];
-                            h = sq_cut_rot(m, h);
-                            for (int dir = 0; dir < 2; ++dir) {
-                                const uint32_t ab = dir ? m->he_twin[ring] : ring;
-                                const uint32_t a = m->he_vert[ab], b = sq_cut_dest(m, ab);
-                                if (!is_free(&w, a) || !is_free(&w, b) || !isfinite(A->dist[a]) ||
-                                    !isfinite(Bf->dist[b]))
-                                    continue;
-                                if (pass == 0 && x0 == SQ_NONE) x0 = A->src[a];
-                                uint32_t na, nb;
-                                const uint32_t n = build_detour(&w, A, Bf, ab, &na, &nb);
-                                if (!n) continue;
-                                int bad = 0;
-                                const long q = region_index(&w, G, na, nb, valence, n, &bad);
-                                if (bad || q % 4 == 0) continue;
-                                const double len = A->dist[a] + Bf->dist[b] + sq_cut_he_length(m, ab);
-                                uint32_t dup = nc;
-                                for (uint32_t x = 0; x < nc; ++x)
-                                    if (cand[x].q == q) dup = x;
-                                if (dup < nc && len >= cand[dup].len) continue;
-                                if (dup == nc) {
-                                    if (nc == 4) continue;
-                                    ++nc;
-                                }
-                                cand[dup].ab = ab, cand[dup].len = len, cand[dup].q = q;
-                                cand[dup].pass = pass;
-                            }
-                        } while (h != h0);
-                    }
-                    for (uint32_t x = 0; x < nc; ++x) {
-                        const forest *A = cand[x].pass ? &F[1] : &F[0], *Bf = cand[x].pass ? &F[2] : &F[0];
-                        uint32_t na, nb;
-                        const uint32_t n = build_detour(&w, A, Bf, cand[x].ab, &na, &nb);
-                        sq_cut_graph cg;
-                        sq_error e2;
-                        uint32_t d = 0;
-                        if (!n || apply_detour(m, cone, G, s, na, nb, w.route, n, &cg, &d, &e2) != SQ_OK) {
-                            if (n) sq_cut_graph_free(&cg);
-                            continue;
-                        }
-                        mismatch M2;
-                        if (!compute_mismatch(m, &cg, turn, blocked, &M2)) {
-                            sq_cut_graph_free(&cg);
-                            continue;
-                        }
-                        const uint32_t nn = M2.norm;
-                        mismatch_free(&M2);
-                        if (nn < M.norm && (nn < best_norm || (nn == best_norm && cand[x].len < best_len))) {
-                            best_norm = nn, best_len = cand[x].len, best_shift = d;
-                            sq_cut_graph_free(&best);
-                            best = cg;
-                        } else
-                            sq_cut_graph_free(&cg);
-                    }
+                    uint32_t nc = 0;
+                    if (!cone_detours(&w, G, valence, F, c, lo, hi, cand, &nc)) goto nomem;
+                    pick_detour(&w, G, turn, blocked, F, s, cand, nc, M.norm, &best, &best_norm, &best_len,
+                                &best_shift);
                 }
             }
         }
