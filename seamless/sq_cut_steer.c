@@ -583,6 +583,19 @@ static void pick_detour(steer_ws *w, const sq_cut_graph *G, const double *turn, 
 }
 }
 
+/* G back to the cut it came with (he_cut0, straight0, length). */
+static sq_status restore_cut(const sq_mesh *m, sq_cut_graph *G, const uint8_t *he_cut0, const uint8_t *straight0,
+                             double length, sq_error *err)
+{
+    memcpy(G->he_cut, he_cut0, m->nh);
+    G->length = length;
+    sq_status st = sq_cut_boundary_word(m, G, err);
+    if (st) return st;
+    G->rank = sq_pattern_rank(&G->pattern);
+    memcpy(G->pattern.straight, straight0, G->pattern.k);
+    return SQ_OK;
+}
+
 sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const double *turn,
                              sq_cut_graph *G, sq_cut_steer_stats *stats, sq_error *err)
 {
@@ -709,12 +722,8 @@ finish:
     if (M.norm > S.norm_before) {
         /* the detours' trees disagreed with the canonical one: worse than
          * the input by its measure, so the input is kept */
-        memcpy(G->he_cut, he_cut0, m->nh);
-        G->length = S.length_before;
-        st = sq_cut_boundary_word(m, G, err);
+        st = restore_cut(m, G, he_cut0, straight0, S.length_before, err);
         if (st) goto done;
-        G->rank = sq_pattern_rank(&G->pattern);
-        memcpy(G->pattern.straight, straight0, G->pattern.k);
         S.reroutes = 0, S.corner_shift = 0;
         mismatch_free(&M);
         if (!compute_mismatch(m, G, turn, NULL, &M)) {

@@ -200,6 +200,53 @@ sq_status sq_domain_order(const uint32_t *val, uint32_t n, int keep, uint32_t *o
     return sq_valence_check_sequence(out, n, NULL, err);
 }
 
+/* D takes the subdivided metapolygon sub (freed here) as its quads, with
+ * the faces' metapolygon faces and arrays for its D->k corners and sides;
+ * *corner_v, *len (D->k, the caller frees them): sub's corners and side
+ * lengths, before padding. */
+static sq_status take_subdivision(sq_domain *D, sq_mp_quads *sub, uint32_t **corner_v, uint32_t **len, sq_error *err)
+{
+    const uint32_t k = D->k;
+    D->quads_unpadded = sub->mesh.nf;
+    D->nf_unpadded = sub->mesh.nf;
+    D->f_meta_face = malloc((size_t)sub->mesh.nf * sizeof *D->f_meta_face);
+    *corner_v = malloc((size_t)k * sizeof **corner_v);
+    *len = malloc((size_t)k * sizeof **len);
+    D->corner_vert = malloc((size_t)k * sizeof *D->corner_vert);
+    D->side_len = malloc((size_t)k * sizeof *D->side_len);
+    D->padding = malloc((size_t)k * sizeof *D->padding);
+    if (!D->f_meta_face || !*corner_v || !*len || !D->corner_vert || !D->side_len || !D->padding) {
+        sq_mp_quads_free(sub);
+        free(*corner_v), free(*len);
+        *corner_v = *len = NULL;
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    }
+    for (uint32_t f = 0; f < sub->mesh.nf; f++) D->f_meta_face[f] = D->meta.he_face[sub->f_origin[f]];
+    for (uint32_t j = 0; j < k; j++) {
+        (*corner_v)[j] = sub->bnd_vert[sub->corner_pos[j]];
+        (*len)[j] = sub->side_len[j];
+    }
+    D->quads = sub->mesh;
+    sq_metapolygon_init(&sub->mesh);
+    sq_mp_quads_free(sub);
+    return SQ_OK;
+}
+
+/* Seed 6.4: D by one slide (sq_domain_slide_build), recorded in D. */
+static sq_status build_slid(sq_domain *D, uint32_t *corner_v, uint32_t *len, uint32_t offset, sq_error *err)
+{
+    sq_slide_info info;
+    memset(&info, 0, sizeof info);
+    sq_status st = sq_domain_slide_build(D, corner_v, len, offset, &info, err);
+    if (st) return st;
+    D->slid = 1;
+    D->slide_length = info.length;
+    D->slide_shift = info.shift;
+    D->slide_start = info.seam_start;
+    D->slide_end = info.seam_end;
+    return SQ_OK;
+}
+
 /* D's side pattern: opt's, or the canonical one of the genus; k sides,
  * that genus. */
 static sq_status set_pattern(sq_domain *D, uint32_t genus, uint32_t k, const sq_domain_options *opt, sq_error *err)
@@ -283,29 +330,9 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
         goto fail;
     }
     D->k = k;
-    D->quads_unpadded = sub.mesh.nf;
-    D->nf_unpadded = sub.mesh.nf;
-    D->f_meta_face = malloc((size_t)sub.mesh.nf * sizeof *D->f_meta_face);
-    uint32_t *corner_v = malloc((size_t)k * sizeof *corner_v);
-    uint32_t *len = malloc((size_t)k * sizeof *len);
-    D->corner_vert = malloc((size_t)k * sizeof *D->corner_vert);
-    D->side_len = malloc((size_t)k * sizeof *D->side_len);
-    D->padding = malloc((size_t)k * sizeof *D->padding);
-    if (!D->f_meta_face || !corner_v || !len || !D->corner_vert || !D->side_len || !D->padding) {
-        sq_mp_quads_free(&sub);
-        free(corner_v), free(len);
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto fail;
-    }
-    for (uint32_t f = 0; f < sub.mesh.nf; f++) D->f_meta_face[f] = D->meta.he_face[sub.f_origin[f]];
-    for (uint32_t j = 0; j < k; j++) {
-        corner_v[j] = sub.bnd_vert[sub.corner_pos[j]];
-        len[j] = sub.side_len[j];
-    }
-    /* take the quad mesh over */
-    D->quads = sub.mesh;
-    sq_metapolygon_init(&sub.mesh);
-    sq_mp_quads_free(&sub);
+    uint32_t *corner_v = NULL, *len = NULL;
+    st = take_subdivision(D, &sub, &corner_v, &len, err);
+    if (st) goto fail;
 
     st = set_pattern(D, genus, k, opt, err);
     if (st) {
@@ -323,16 +350,9 @@ sq_status sq_domain_build(uint32_t genus, const int32_t *valences, uint32_t ncon
     D->offsets_feasible = nchoice;
     if (nchoice == 0) { /* seed 6.4: the pattern fails the rank test: one slide */
         free(choice);
-        sq_slide_info info;
-        memset(&info, 0, sizeof info);
-        st = sq_domain_slide_build(D, corner_v, len, opt ? opt->offset : SQ_NONE, &info, err);
+        st = build_slid(D, corner_v, len, opt ? opt->offset : SQ_NONE, err);
         free(corner_v), free(len);
         if (st) goto fail;
-        D->slid = 1;
-        D->slide_length = info.length;
-        D->slide_shift = info.shift;
-        D->slide_start = info.seam_start;
-        D->slide_end = info.seam_end;
         D->seconds = sq_now() - t0;
         return SQ_OK;
     }
