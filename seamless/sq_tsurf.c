@@ -434,6 +434,78 @@ static int may_cross(const sq_tsurf *S, uint32_t h, uint32_t src, uint32_t tgt, 
     return 1;
 }
 
+/* Sector routes: the nodes from which the target sector (target_sector,
+ * at its origin) can be entered get fin = 1: the edge opposite the origin
+ * in each of its faces, entered from the other side; its free vertices;
+ * its spokes, from either side. */
+static void mark_sector_ends(const sq_tsurf *S, uint32_t target_sector, uint8_t *fin)
+{
+    uint32_t g = target_sector;
+    do {
+        uint32_t o = S->next[g];
+        if (crossable(S, o)) fin[edge_node(S, o)] = 1;
+        g = sq_ts_ccw(S, g);
+        if (S->kind[g]) break;
+        uint32_t w = sq_ts_head(S, g);
+        if (!blocked(S, w)) fin[w] = 1;
+        if (crossable(S, g)) fin[edge_node(S, g)] = fin[edge_node(S, S->twin[g])] = 1;
+    } while (1);
+}
+
+/* The route found (endn back to src through R's predecessors, the node
+ * SRC standing for src) made of S's halfedges: edge nodes split at their
+ * midpoints, the target vertex tgt last (not for a free route), appended
+ * to *path (*npath). */
+static sq_status emit_route(sq_tsurf *S, const route_ctx *R, uint32_t endn, uint32_t SRC, uint32_t src, uint32_t tgt,
+                            sq_route_target kind, uint32_t **path, uint32_t *npath, sq_error *err)
+{
+    uint32_t cnt = 0;
+    for (uint32_t n = endn; n != SRC; n = R->pred[n]) cnt++;
+    uint32_t *seq = malloc(((size_t)cnt + 2) * sizeof *seq);
+    if (!seq) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
+    {
+        uint32_t i = cnt;
+        for (uint32_t n = endn; n != SRC; n = R->pred[n]) seq[--i] = n;
+    }
+    uint32_t nv0 = S->nv; /* node ids refer to this numbering */
+    uint32_t *p = realloc(*path, ((size_t)*npath + cnt + 1) * sizeof *p);
+    if (!p) {
+        free(seq);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
+    }
+    *path = p;
+    uint32_t prev = src, k = 0;
+    for (uint32_t i = 0; i <= cnt; i++) {
+        uint32_t v;
+        if (i == cnt) {
+            if (kind == SQ_ROUTE_FREE) break;
+            v = tgt;
+        } else if (seq[i] < nv0) {
+            v = seq[i];
+        } else {
+            v = sq_tsurf_split_edge(S, seq[i] - nv0, 0.5);
+            if (v == SQ_NONE) {
+                free(seq);
+                return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
+            }
+        }
+        uint32_t h0 = S->v_he[prev], h = h0, f = SQ_NONE;
+        do {
+            if (sq_ts_head(S, h) == v) f = h;
+            h = sq_ts_ccw(S, h);
+        } while (h != h0 && f == SQ_NONE);
+        if (f == SQ_NONE) {
+            free(seq);
+            return sq_error_set(err, SQ_ERR_INTERNAL, "route: vertices %u and %u are not adjacent", prev, v);
+        }
+        p[*npath + k++] = f;
+        prev = v;
+    }
+    *npath += k;
+    free(seq);
+    return SQ_OK;
+}
+
 sq_status sq_tsurf_route(sq_tsurf *S, uint32_t start, sq_route_target kind, int32_t target_valence,
                          const uint8_t *cone_free, double target_length, uint32_t target_sector,
                          uint32_t **path, uint32_t *npath, sq_error *err)
@@ -442,7 +514,6 @@ sq_status sq_tsurf_route(sq_tsurf *S, uint32_t start, sq_route_target kind, int3
     uint32_t nn = S->nv + S->nh;
     route_ctx R = {S, malloc((size_t)nn * sizeof(double)), malloc((size_t)nn * sizeof(uint32_t)), {0}, rings(S)};
     uint8_t *fin = calloc(nn, 1);
-    uint32_t *seq = NULL;
     sq_status st = SQ_OK;
     if (!R.dist || !R.pred || !fin) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
@@ -457,23 +528,7 @@ sq_status sq_tsurf_route(sq_tsurf *S, uint32_t start, sq_route_target kind, int3
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");             \
         goto done;                                                                  \
     } while (0)
-    /* nodes from which the target can be entered */
-    if (kind == SQ_ROUTE_SECTOR) {
-        tgt = S->vert[target_sector];
-        uint32_t g = target_sector;
-        do {
-            /* the edge opposite the origin in face(g), entered from the
-             * other side (continuing into face(g)) */
-            uint32_t o = S->next[g];
-            if (crossable(S, o)) fin[edge_node(S, o)] = 1;
-            g = sq_ts_ccw(S, g);
-            if (S->kind[g]) break;
-            uint32_t w = sq_ts_head(S, g);
-            if (!blocked(S, w)) fin[w] = 1;
-            /* a spoke strictly inside the sector, from either side */
-            if (crossable(S, g)) fin[edge_node(S, g)] = fin[edge_node(S, S->twin[g])] = 1;
-        } while (1);
-    }
+    if (kind == SQ_ROUTE_SECTOR) tgt = S->vert[target_sector], mark_sector_ends(S, target_sector, fin);
     /* spokes strictly inside sector(start): never crossed (fin = 2) */
     for (uint32_t g = sq_ts_ccw(S, start); !S->kind[g] && g != start; g = sq_ts_ccw(S, g))
         if (!fin[S->nv + g]) fin[S->nv + g] = fin[S->nv + S->twin[g]] = 2;
@@ -579,44 +634,7 @@ found:
                           src, kind == SQ_ROUTE_CONE ? "cone" : kind == SQ_ROUTE_FREE ? "free" : "sector");
         goto done;
     }
-    /* node sequence from the start */
-    uint32_t cnt = 0;
-    for (uint32_t n = endn; n != SRC; n = R.pred[n]) cnt++;
-    seq = malloc(((size_t)cnt + 2) * sizeof *seq);
-    if (!seq) PUSH_FAIL;
-    {
-        uint32_t i = cnt;
-        for (uint32_t n = endn; n != SRC; n = R.pred[n]) seq[--i] = n;
-    }
-    uint32_t nv0 = S->nv; /* node ids refer to this numbering */
-    uint32_t *p = realloc(*path, ((size_t)*npath + cnt + 1) * sizeof *p);
-    if (!p) PUSH_FAIL;
-    *path = p;
-    uint32_t prev = src, k = 0;
-    for (uint32_t i = 0; i <= cnt; i++) {
-        uint32_t v;
-        if (i == cnt) {
-            if (kind == SQ_ROUTE_FREE) break;
-            v = tgt;
-        } else if (seq[i] < nv0) {
-            v = seq[i];
-        } else {
-            v = sq_tsurf_split_edge(S, seq[i] - nv0, 0.5);
-            if (v == SQ_NONE) PUSH_FAIL;
-        }
-        uint32_t h0 = S->v_he[prev], h = h0, f = SQ_NONE;
-        do {
-            if (sq_ts_head(S, h) == v) f = h;
-            h = sq_ts_ccw(S, h);
-        } while (h != h0 && f == SQ_NONE);
-        if (f == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "route: vertices %u and %u are not adjacent", prev, v);
-            goto done;
-        }
-        p[*npath + k++] = f;
-        prev = v;
-    }
-    *npath += k;
+    st = emit_route(S, &R, endn, SRC, src, tgt, kind, path, npath, err);
 #undef PUSH_FAIL
 done:
     free(R.dist);
@@ -625,7 +643,6 @@ done:
     free(R.H.d);
     free(R.ring);
     free(fin);
-    free(seq);
     return st;
 }
 
@@ -639,6 +656,65 @@ static void centroid(const sq_tsurf *S, uint32_t f, double c[3])
         for (int k = 0; k < 3; k++) c[k] += S->pos[3 * S->vert[h] + k] / 3;
 }
 
+
+/* Face routes: the goal faces, those whose vertex opposite the entry edge
+ * may be the target (the target sector's fan; every face at a target
+ * cone). */
+static void mark_goals(const sq_tsurf *S, sq_route_target kind, int32_t target_valence, const uint8_t *cone_free,
+                       uint32_t target_sector, uint8_t *goal)
+{
+    if (kind == SQ_ROUTE_SECTOR) {
+        uint32_t g = target_sector;
+        do {
+            goal[S->face[g]] = 1;
+            g = sq_ts_ccw(S, g);
+        } while (!S->kind[g] && g != target_sector);
+    } else if (kind == SQ_ROUTE_CONE) {
+        for (uint32_t h = 0; h < S->nh; h++) {
+            uint32_t v = S->vert[h];
+            if (is_target_cone(S, v, target_valence, cone_free)) goal[S->face[h]] = 1;
+        }
+    }
+}
+
+/* The face route's crossed halfedges (cross, n of them) split in order at
+ * their midpoints; the edge from the previous path vertex to each new one
+ * exists after the split; then the edge to target (for a free route only
+ * where nothing was crossed). The path's halfedges appended to *path
+ * (*npath). */
+static sq_status emit_face_route(sq_tsurf *S, const uint32_t *cross, uint32_t n, uint32_t src, uint32_t target,
+                                 sq_route_target kind, uint32_t **path, uint32_t *npath, sq_error *err)
+{
+    uint32_t prev = src;
+    uint32_t cnt = 0;
+    uint32_t *p = realloc(*path, ((size_t)*npath + n + 1) * sizeof *p);
+    if (!p) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
+    *path = p;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t m = sq_tsurf_split_edge(S, cross[i], 0.5);
+        if (m == SQ_NONE) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
+        /* find the halfedge prev -> m */
+        uint32_t h0 = S->v_he[m], h = h0, found = SQ_NONE;
+        do {
+            if (sq_ts_head(S, h) == prev) found = S->twin[h];
+            h = sq_ts_ccw(S, h);
+        } while (h != h0);
+        if (found == SQ_NONE) return sq_error_set(err, SQ_ERR_INTERNAL, "face route: no edge to Steiner vertex %u", m);
+        p[*npath + cnt++] = found;
+        prev = m;
+    }
+    if (kind != SQ_ROUTE_FREE || n == 0) {
+        uint32_t h0 = S->v_he[prev], h = h0, found = SQ_NONE;
+        do {
+            if (sq_ts_head(S, h) == target) found = h;
+            h = sq_ts_ccw(S, h);
+        } while (h != h0);
+        if (found == SQ_NONE) return sq_error_set(err, SQ_ERR_INTERNAL, "face route: no edge to the target %u", target);
+        p[*npath + cnt++] = found;
+    }
+    *npath += cnt;
+    return SQ_OK;
+}
 
 sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind,
                                int32_t target_valence, const uint8_t *cone_free,
@@ -660,19 +736,7 @@ sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind
     }
     for (uint32_t f = 0; f < nf; f++) dist[f] = INFINITY, pred[f] = SQ_NONE, centroid(S, f, cen + 3 * f);
     uint32_t src = S->vert[start];
-    /* goals: faces whose vertex opposite the entry edge is the target */
-    if (kind == SQ_ROUTE_SECTOR) {
-        uint32_t g = target_sector;
-        do {
-            goal[S->face[g]] = 1;
-            g = sq_ts_ccw(S, g);
-        } while (!S->kind[g] && g != target_sector);
-    } else if (kind == SQ_ROUTE_CONE) {
-        for (uint32_t h = 0; h < S->nh; h++) {
-            uint32_t v = S->vert[h];
-            if (is_target_cone(S, v, target_valence, cone_free)) goal[S->face[h]] = 1;
-        }
-    }
+    mark_goals(S, kind, target_valence, cone_free, target_sector, goal);
     /* Two passes. The search is over faces, so a face holding the target
      * that is first reached across an edge at the target is never entered
      * again across the edge opposite it, which the route must: where the
@@ -759,48 +823,7 @@ sq_status sq_tsurf_route_faces(sq_tsurf *S, uint32_t start, sq_route_target kind
         for (uint32_t f = endf; pred[f] != SQ_NONE; f = S->face[S->twin[pred[f]]]) cross[--i] = S->twin[pred[f]];
     }
     uint32_t target = S->vert[sq_ts_prev(S, pred[endf])];
-    /* split the crossed edges in order; the edge from the previous path
-     * vertex to each new one exists after the split */
-    uint32_t prev = src;
-    uint32_t cnt = 0;
-    uint32_t *p = realloc(*path, ((size_t)*npath + n + 1) * sizeof *p);
-    if (!p) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
-        goto done;
-    }
-    *path = p;
-    for (uint32_t i = 0; i < n; i++) {
-        uint32_t m = sq_tsurf_split_edge(S, cross[i], 0.5);
-        if (m == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (route)");
-            goto done;
-        }
-        /* find the halfedge prev -> m */
-        uint32_t h0 = S->v_he[m], h = h0, found = SQ_NONE;
-        do {
-            if (sq_ts_head(S, h) == prev) found = S->twin[h];
-            h = sq_ts_ccw(S, h);
-        } while (h != h0);
-        if (found == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "face route: no edge to Steiner vertex %u", m);
-            goto done;
-        }
-        p[*npath + cnt++] = found;
-        prev = m;
-    }
-    if (kind != SQ_ROUTE_FREE || n == 0) {
-        uint32_t h0 = S->v_he[prev], h = h0, found = SQ_NONE;
-        do {
-            if (sq_ts_head(S, h) == target) found = h;
-            h = sq_ts_ccw(S, h);
-        } while (h != h0);
-        if (found == SQ_NONE) {
-            st = sq_error_set(err, SQ_ERR_INTERNAL, "face route: no edge to the target %u", target);
-            goto done;
-        }
-        p[*npath + cnt++] = found;
-    }
-    *npath += cnt;
+    st = emit_face_route(S, cross, n, src, target, kind, path, npath, err);
 done:
     free(dist);
     free(pred);
