@@ -268,9 +268,8 @@ static char *staging_path(const char *path, int k)
 static sq_status write_domain_svg(const sq_param *P, const char *path, sq_error *err)
 {
     if (P->domain && P->tree && P->omega)
-        return sq_omega_write_svg((const sq_domain *)P->domain, (const sq_cone_tree *)P->tree,
-                                  (const sq_omega *)P->omega, path, err);
-    if (P->domain) return sq_domain_write_svg((const sq_domain *)P->domain, NULL, path, err);
+        return sq_omega_write_svg(P->domain, P->tree, P->omega, path, err);
+    if (P->domain) return sq_domain_write_svg(P->domain, NULL, path, err);
     return sq_error_set(err, SQ_ERR_INTERNAL, "%s: the parametrization kept no domain to draw",
                         path);
 }

@@ -332,11 +332,12 @@ typedef struct sq_param {
     uint32_t *he_twin;  /* 3 nf or NULL: the corner across each edge, kept */
                         /* from the construction for sq_param_simplify     */
                         /* (which derives it where NULL, and frees it)     */
-    /* The combinatorial domain and Omega, kept for pictures
-     * (sq_domain_write_svg, sq_omega_write_svg); opaque here. */
-    void *domain;       /* sq_domain *                                     */
-    void *tree;         /* sq_cone_tree *                                  */
-    void *omega;        /* sq_omega *                                      */
+    /* The combinatorial domain, its cone tree and Omega, kept for
+     * pictures (sq_domain_write_svg, sq_omega_write_svg; sq_domain.h and
+     * sq_omega.h declare them); tree is NULL with tree qtri. */
+    struct sq_domain *domain;
+    struct sq_cone_tree *tree;
+    struct sq_omega *omega;
 } sq_param;
 
 void sq_param_init(sq_param *P);
