@@ -392,10 +392,7 @@ sq_status sq_param_build(const sq_mesh *m, const int32_t *valence, const sq_para
     if (st == SQ_OK) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
     if (st) return st;
     st = build_attempts(m, valence, &o, out, stats, err);
-    if (st == SQ_ERR_SOLVER && stats->cut_needs_split) {
-        sq_status s2 = build_split_cones(m, valence, &o, out, stats, err);
-        if (s2 != SQ_ERR_SOLVER || stats->cone_splits) st = s2;
-    }
+    if (st == SQ_ERR_SOLVER && stats->cut_needs_split) st = build_split_cones(m, valence, &o, out, stats, err);
     if (st == SQ_OK && o.simplify != SQ_SIMPLIFY_OFF && !o.allow_flips) {
         double t = sq_now();
         if (o.progress) o.progress(o.progress_ctx, "simplify", 0.95);

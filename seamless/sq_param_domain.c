@@ -563,7 +563,7 @@ sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *
     if (st_out) st_out->quads_unpadded = c->D->quads_unpadded, st_out->quads_added = c->D->quads_added;
     {   /* the memory limit: Omega, the cone tree and the interior map grow
          * with Q (sq_param_options.max_memory) */
-        const uint64_t max_memory = c->opt->max_memory ? c->opt->max_memory : SQ_PARAM_MAX_MEMORY;
+        const uint64_t max_memory = sq_param_max_memory(c->opt);
         const uint64_t nq = c->D->quads_unpadded + c->D->quads_added;
         if (nq > max_memory / SQ_BYTES_PER_DOMAIN_QUAD) {
             st = sq_error_set(err, SQ_ERR_SOLVER,

@@ -36,6 +36,13 @@ uint64_t sq_param_steiner_budget(const sq_param_options *opt, uint32_t nv_input)
  * SQ_QTRI_MAX_CROSSINGS, at least the Steiner budget. */
 uint64_t sq_param_crossing_budget(const sq_param_options *opt, uint32_t nv, uint32_t nf);
 
+/* The memory an attempt may plan for (sq_param_options.max_memory, or
+ * SQ_PARAM_MAX_MEMORY where 0). */
+static inline uint64_t sq_param_max_memory(const sq_param_options *opt)
+{
+    return opt->max_memory ? opt->max_memory : SQ_PARAM_MAX_MEMORY;
+}
+
 /* The colour of a cone of valence k in the pictures (sq_param_io.c). */
 const char *sq_param_valence_colour(int32_t k);
 

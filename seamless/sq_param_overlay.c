@@ -231,7 +231,7 @@ static sq_status omega_disk_build(ctx *c, const surface_disk *A, const uint32_t 
     const double *buv = B->buv;
     uint32_t nbt = B->bt.n;
     /* the memory limit, before the disk map's factorization */
-    const uint64_t max_memory = c->opt->max_memory ? c->opt->max_memory : SQ_PARAM_MAX_MEMORY;
+    const uint64_t max_memory = sq_param_max_memory(c->opt);
     if ((uint64_t)nbt > max_memory / SQ_BYTES_PER_DISK_TRIANGLE) {
         st = sq_error_set(err, SQ_ERR_SOLVER,
                           "overlay: Omega triangulated has %u triangles; its disk map would need about %llu MB, "
@@ -399,7 +399,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
                       : c->qtri             ? sq_param_crossing_budget(c->opt, c->m->nv, c->m->nf)
                                             : steiner_budget(c);
     /* the memory limit, checked by the sample before the walk allocates */
-    const uint64_t max_memory = c->opt->max_memory ? c->opt->max_memory : SQ_PARAM_MAX_MEMORY;
+    const uint64_t max_memory = sq_param_max_memory(c->opt);
     const uint64_t mem_cap = max_memory / SQ_BYTES_PER_CROSSING;
     const int by_memory = mem_cap < budget;
     if (by_memory) budget = mem_cap;

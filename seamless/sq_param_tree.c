@@ -260,7 +260,7 @@ sq_status sq_param_qtri_tree(ctx *c)
     if (st == SQ_OK) st = sq_qtri_build(c->D, xy, &T, c->err);
     /* the memory limit: Omega, its coarsening and the overlay's domain
      * mesh grow with Q triangulated (sq_param_options.max_memory) */
-    T.max_faces = (c->opt->max_memory ? c->opt->max_memory : SQ_PARAM_MAX_MEMORY) / SQ_BYTES_PER_QTRI_FACE;
+    T.max_faces = sq_param_max_memory(c->opt) / SQ_BYTES_PER_QTRI_FACE;
     if (st == SQ_OK)
         st = sq_qtri_replicate(&T, c->D, c->m, &c->G, n, c->step_vertex, qv, c->s_tree_next, sv, &root,
                                q_side_of_surface(c, root.side), c->err);
