@@ -12,7 +12,7 @@
 #include "cli_common.h"
 #include "sq_cones.h"
 #include "sq_domain.h"
-#include "sq_domain_svg.h"
+#include "sq_seamless_svg.h"
 #include "sq_io.h"
 #include "sq_mesh.h"
 #include "sq_omega.h"

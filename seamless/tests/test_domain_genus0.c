@@ -1,4 +1,4 @@
-/* Tests of the genus-0 domain (seed 6.5, seamless/sq_domain_genus0.c):
+/* Tests of the genus-0 domain (seed 6.5, seamless/domain/sq_domain_genus0.c):
  * hand cases (cube, four 2s, octahedron-like, the cone multisets of
  * mpz/homer and mpz/fandisk) and random admissible multisets (300 in CI,
  * 100x with SQ_LONG_TESTS=1). Each result must pass sq_domain_verify (the

@@ -23,6 +23,7 @@
 
 #include "sq_domain.h"
 #include "sq_omega.h"
+#include "sq_seamless_svg.h"
 
 typedef struct case_stats {
     uint64_t quads, tree_edges, segments, cones, bbox;

@@ -1,4 +1,4 @@
-/* Tests for the exact padding solve (seamless/sq_padding.h, seed 6.3):
+/* Tests for the exact padding solve (seamless/domain/sq_padding.h, seed 6.3):
  * hand examples, explicit quad counts, every canonical pattern of genus
  * 2..30 with random lengths, the rank test of seamless-notes 7 against the
  * solver, brute force on small general systems, and the LP lower bound. */

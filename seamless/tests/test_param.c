@@ -32,6 +32,7 @@
 #include "sq_param_internal.h"
 #include "sq_predicates.h"
 #include "sq_test_mesh.h"
+#include "sq_seamless_svg.h"
 
 typedef struct model {
     sq_mesh m;

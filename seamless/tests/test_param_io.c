@@ -1,5 +1,5 @@
 /* Tests of sq_param_verify, sq_param_write_obj and sq_param_write_svg
- * (seamless/sq_param_io.c) on parametrizations built by hand:
+ * (seamless/param/sq_param_io.c) on parametrizations built by hand:
  *  - a flat square torus: a 4 x 4 grid of unit squares, two triangles
  *    each, opposite sides identified by the translations (4, 0) and
  *    (0, 4): a seamless integer grid map without cones (seams: two loops
@@ -30,6 +30,7 @@
 #include "sq_cones.h"
 #include "sq_io.h"
 #include "sq_param.h"
+#include "sq_seamless_svg.h"
 
 #ifndef SQ_SHARED_DIR
 #define SQ_SHARED_DIR "../shared"

@@ -1,4 +1,4 @@
-/* seamquad: tests of sq_param_simplify (seamless/sq_param_simplify.c) on
+/* seamquad: tests of sq_param_simplify (seamless/param/sq_param_simplify.c) on
  * real maps: mpz/eight (the overlay's map, step 7') and mpz/genus3 (the
  * cells' map, steps 6-7), each built with SQ_SIMPLIFY_OFF and with the
  * default (simplified). The simplified map must:
@@ -30,6 +30,7 @@
 
 #include "sq_param.h"
 #include "sq_test_mesh.h"
+#include "sq_seamless_svg.h"
 
 static void sub(const double *a, const double *b, double *r)
 {

@@ -1,4 +1,4 @@
-/* Tests for side-pairing patterns (seamless/sq_pattern.h): corner classes,
+/* Tests for side-pairing patterns (seamless/domain/sq_pattern.h): corner classes,
  * genus, the 4-corner condition, handle insertion, canonical and random
  * patterns, and the genus-2 census of seamless-notes 7. */
 #include <setjmp.h>

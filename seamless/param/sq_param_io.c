@@ -1,5 +1,6 @@
 /* seamquad: independent check and output of a seamless parametrization
- * (sq_param.h): sq_param_verify, sq_param_write_obj, sq_param_write_svg.
+ * (sq_param.h): sq_param_verify, sq_param_write_obj (the picture:
+ * svg/sq_param_svg.c).
  *
  * The check shares no code with the construction (sq_param.c and its step
  * files, sq_param_steps.h): it rebuilds the halfedge mesh from P->tri with
@@ -94,42 +95,6 @@ static int same_translation(int r, const double *pa, const double *qa, const dou
 
 /* ---- the mesh of P ------------------------------------------------------- */
 
-/* Arguments and index ranges; a message naming the first bad element. */
-static sq_status check_arrays(const sq_param *P, const char *who, sq_error *err)
-{
-    if (!P) return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: NULL parametrization", who);
-    if (!P->nv || !P->nf || !P->nuv)
-        return sq_error_set(err, SQ_ERR_ARGUMENT,
-                            "%s: empty parametrization (%" PRIu32 " vertices, %" PRIu32
-                            " faces, %" PRIu32 " UV points)",
-                            who, P->nv, P->nf, P->nuv);
-    if (!P->pos || !P->tri || !P->tri_uv || !P->uv)
-        return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: NULL array in the parametrization", who);
-    if (P->nv_input > P->nv)
-        return sq_error_set(err, SQ_ERR_ARGUMENT,
-                            "%s: nv_input %" PRIu32 " exceeds the %" PRIu32 " vertices", who,
-                            P->nv_input, P->nv);
-    if (P->nf > UINT32_MAX / 3)
-        return sq_error_set(err, SQ_ERR_ARGUMENT, "%s: too many faces", who);
-    for (uint32_t c = 0; c < 3 * P->nf; c++) {
-        if (P->tri[c] >= P->nv)
-            return sq_error_set(err, SQ_ERR_INTERNAL,
-                                "%s: face %" PRIu32 " uses vertex %" PRIu32 ", but there are %" PRIu32
-                                " vertices",
-                                who, c / 3, P->tri[c], P->nv);
-        if (P->tri_uv[c] >= P->nuv)
-            return sq_error_set(err, SQ_ERR_INTERNAL,
-                                "%s: face %" PRIu32 " uses UV point %" PRIu32 ", but there are %" PRIu32
-                                " UV points",
-                                who, c / 3, P->tri_uv[c], P->nuv);
-    }
-    for (uint32_t t = 0; t < P->nuv; t++)
-        if (!isfinite(P->uv[2 * (size_t)t]) || !isfinite(P->uv[2 * (size_t)t + 1]))
-            return sq_error_set(err, SQ_ERR_INTERNAL, "%s: UV point %" PRIu32 " is not finite (%g, %g)",
-                                who, t, P->uv[2 * (size_t)t], P->uv[2 * (size_t)t + 1]);
-    return SQ_OK;
-}
-
 sq_status sq_param_soup(const sq_param *P, sq_soup *s, sq_error *err)
 {
     memset(s, 0, sizeof *s);
@@ -160,19 +125,6 @@ sq_status sq_param_mesh(const sq_param *P, const char *who, sq_mesh *m, sq_error
     if (st == SQ_ERR_NOMEM) return sq_error_set(err, st, "%s: out of memory", who);
     if (st) return sq_error_set(err, SQ_ERR_INTERNAL, "%s: the mesh is not a valid closed surface: %s", who, e2.msg);
     return SQ_OK;
-}
-
-static uint32_t he_dst(const sq_mesh *m, uint32_t h) { return m->he_vert[m->he_next[h]]; }
-
-static int is_seam(const sq_mesh *m, const sq_param *P, uint32_t h)
-{
-    uint32_t t = m->he_twin[h];
-    return P->tri_uv[h] != P->tri_uv[m->he_next[t]] || P->tri_uv[m->he_next[h]] != P->tri_uv[t];
-}
-
-static int is_cone(const sq_param *P, uint32_t v)
-{
-    return P->valence && v < P->nv_input && P->valence[v] != 4;
 }
 
 static const double *UV(const sq_param *P, uint32_t t) { return P->uv + 2 * (size_t)t; }
@@ -215,95 +167,6 @@ static double best_residual(const transition *T, int *best_r)
         if (res < best) best = res, *best_r = r;
     }
     return best;
-}
-
-/* Seam curves (see the top of the file). curve[h] = curve index for both
- * halfedges of every seam edge, SQ_NONE elsewhere; dir[h] = 1 for the
- * halfedge that points along the walking direction of its curve; first[i]
- * = the first halfedge (walking direction) of curve i. Returns the number
- * of curves, or SQ_NONE when out of memory. */
-typedef struct seam_curves {
-    uint32_t n;
-    uint32_t *curve; /* nh */
-    uint8_t *dir;    /* nh */
-    uint32_t *first; /* n  */
-    uint32_t *sdeg;  /* nv: seam edges at each vertex */
-} seam_curves;
-
-static void curves_free(seam_curves *C)
-{
-    free(C->curve), free(C->dir), free(C->first), free(C->sdeg);
-    memset(C, 0, sizeof *C);
-}
-
-static int is_node(const seam_curves *C, const sq_param *P, uint32_t v)
-{
-    return C->sdeg[v] != 2 || is_cone(P, v);
-}
-
-/* The other seam halfedge out of the vertex v where halfedge `in` ends (v
- * has two seam edges and is not a cone), or SQ_NONE. */
-static uint32_t next_seam_out(const sq_mesh *m, const seam_curves *C, uint32_t in)
-{
-    uint32_t back = m->he_twin[in], h = back;
-    do {
-        h = m->he_next[m->he_twin[h]];
-        if (h != back && C->curve[h] != SQ_NONE) return h;
-    } while (h != back);
-    return SQ_NONE;
-}
-
-/* While the curves are found, C->curve[h] is SQ_NONE for a non-seam edge
- * and SQ_NONE - 1 for a seam edge not yet on a curve. */
-static sq_status find_curves(const sq_mesh *m, const sq_param *P, seam_curves *C, sq_error *err)
-{
-    memset(C, 0, sizeof *C);
-    C->curve = malloc((size_t)m->nh * sizeof *C->curve);
-    C->dir = calloc(m->nh ? m->nh : 1, 1);
-    C->sdeg = calloc(m->nv ? m->nv : 1, sizeof *C->sdeg);
-    uint32_t cap = 64;
-    C->first = malloc(cap * sizeof *C->first);
-    if (!C->curve || !C->dir || !C->sdeg || !C->first) {
-        curves_free(C);
-        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    }
-    const uint32_t UNSET = SQ_NONE - 1;
-    for (uint32_t h = 0; h < m->nh; h++) {
-        C->curve[h] = is_seam(m, P, h) ? UNSET : SQ_NONE;
-        if (C->curve[h] == UNSET && h < m->he_twin[h]) {
-            C->sdeg[m->he_vert[h]]++;
-            C->sdeg[he_dst(m, h)]++;
-        }
-    }
-    /* open curves from every node, then closed loops */
-    for (int pass = 0; pass < 2; pass++) {
-        for (uint32_t h0 = 0; h0 < m->nh; h0++) {
-            if (C->curve[h0] != UNSET) continue;
-            if (pass == 0 && !is_node(C, P, m->he_vert[h0])) continue;
-            if (C->n == cap) {
-                uint32_t *t = realloc(C->first, 2 * (size_t)cap * sizeof *t);
-                if (!t) {
-                    curves_free(C);
-                    return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-                }
-                C->first = t;
-                cap *= 2;
-            }
-            uint32_t id = C->n++;
-            C->first[id] = h0;
-            uint32_t h = h0;
-            for (;;) {
-                C->curve[h] = C->curve[m->he_twin[h]] = id;
-                C->dir[h] = 1;
-                uint32_t y = he_dst(m, h);
-                if (is_node(C, P, y)) break;
-                uint32_t g = next_seam_out(m, C, h);
-                if (g == SQ_NONE || C->curve[g] != UNSET) break; /* a loop closed */
-                h = g;
-            }
-        }
-    }
-    return SQ_OK;
 }
 
 /* ---- verify ------------------------------------------------------------- */
@@ -362,12 +225,12 @@ static sq_status check_he_seam(const sq_param *P, const sq_mesh *m, const char *
 {
     if (P->he_seam)
         for (uint32_t h = 0; h < m->nh; h++)
-            if (!P->he_seam[h] != !is_seam(m, P, h))
+            if (!P->he_seam[h] != !sq_param_is_seam(m, P, h))
                 return sq_error_set(err, SQ_ERR_INTERNAL,
                                     "%s: he_seam of face %" PRIu32 ", corner %" PRIu32
                                     " says %s, but edge (%" PRIu32 ", %" PRIu32 ") %s",
                                     who, h / 3, h % 3, P->he_seam[h] ? "seam" : "no seam", m->he_vert[h],
-                                    he_dst(m, h),
+                                    sq_param_he_dst(m, h),
                                     P->he_seam[h] ? "has the same UV points on both sides"
                                                   : "has different UV points on its two sides");
     return SQ_OK;
@@ -380,7 +243,7 @@ static sq_status check_seam_edges(const sq_param *P, const sq_mesh *m, int integ
 {
     uint32_t nbad = 0, nnonint = 0, bad = SQ_NONE, nonint = SQ_NONE;
     for (uint32_t h = 0; h < m->nh; h++) {
-        if (h > m->he_twin[h] || !is_seam(m, P, h)) continue;
+        if (h > m->he_twin[h] || !sq_param_is_seam(m, P, h)) continue;
         transition T = edge_transition(m, P, h);
         if (T.r < 0) {
             if (!nbad++) bad = h;
@@ -403,7 +266,7 @@ static sq_status check_seam_edges(const sq_param *P, const sq_mesh *m, int integ
                             ": its two UV copies are not related exactly by a rotation by a "
                             "multiple of 90 degrees plus a translation (closest: rotation by %d "
                             "degrees, off by %.3g); %" PRIu32 " such seam edges in all",
-                            who, m->he_vert[bad], he_dst(m, bad), bad / 3, m->he_twin[bad] / 3,
+                            who, m->he_vert[bad], sq_param_he_dst(m, bad), bad / 3, m->he_twin[bad] / 3,
                             90 * r, res, nbad);
     }
     if (nnonint) {
@@ -416,7 +279,7 @@ static sq_status check_seam_edges(const sq_param *P, const sq_mesh *m, int integ
                             "(rotation by %d degrees) is not integer; %" PRIu32
                             " such seam edges in all (an integer grid map needs integer "
                             "translations)",
-                            who, m->he_vert[nonint], he_dst(m, nonint), nonint / 3,
+                            who, m->he_vert[nonint], sq_param_he_dst(m, nonint), nonint / 3,
                             m->he_twin[nonint] / 3, T.qx[0] - Rp[0], T.qx[1] - Rp[1], 90 * T.r,
                             nnonint);
     }
@@ -424,7 +287,7 @@ static sq_status check_seam_edges(const sq_param *P, const sq_mesh *m, int integ
 }
 
 /* (b') one transition per seam curve (C from find_curves) */
-static sq_status check_curve_transitions(const sq_param *P, const sq_mesh *m, const seam_curves *C,
+static sq_status check_curve_transitions(const sq_param *P, const sq_mesh *m, const sq_param_seam_curves *C,
                                          const char *who, sq_error *err)
 {
     for (uint32_t i = 0; i < C->n; i++) {
@@ -442,13 +305,13 @@ static sq_status check_curve_transitions(const sq_param *P, const sq_mesh *m, co
                                         ") (edge %" PRIu32 " along the curve) has rotation %d "
                                         "degrees%s, its first edge (%" PRIu32 ", %" PRIu32
                                         ") rotation %d degrees; a seam curve has one transition",
-                                        who, i, m->he_vert[h0], m->he_vert[h], he_dst(m, h), len - 1,
+                                        who, i, m->he_vert[h0], m->he_vert[h], sq_param_he_dst(m, h), len - 1,
                                         90 * T.r, T.r == T0.r ? " and another translation" : "",
-                                        m->he_vert[h0], he_dst(m, h0), 90 * T0.r);
+                                        m->he_vert[h0], sq_param_he_dst(m, h0), 90 * T0.r);
             }
-            uint32_t y = he_dst(m, h);
-            if (is_node(C, P, y)) break;
-            uint32_t g = next_seam_out(m, C, h);
+            uint32_t y = sq_param_he_dst(m, h);
+            if (sq_param_seam_node(C, P, y)) break;
+            uint32_t g = sq_param_seam_next_out(m, C, h);
             if (g == SQ_NONE || g == h0 || C->curve[g] != i || !C->dir[g]) break;
             h = g;
         }
@@ -461,7 +324,7 @@ static sq_status check_integer_cones(const sq_param *P, const sq_mesh *m, const 
 {
     for (uint32_t c = 0; c < m->nh; c++) {
         uint32_t v = P->tri[c];
-        if (!is_cone(P, v)) continue;
+        if (!sq_param_is_cone(P, v)) continue;
         const double *p = UV(P, P->tri_uv[c]);
         if (floor(p[0]) != p[0] || floor(p[1]) != p[1])
             return sq_error_set(err, SQ_ERR_INTERNAL,
@@ -507,7 +370,7 @@ static sq_status check_angle_sums(const sq_param *P, double *angle, const char *
 sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err)
 {
     static const char *who = "parametrization check";
-    sq_status st = check_arrays(P, who, err);
+    sq_status st = sq_param_check_arrays(P, who, err);
     if (st) return st;
     if (P->valence)
         for (uint32_t v = 0; v < P->nv_input; v++)
@@ -519,7 +382,7 @@ sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err)
     if (st) return st;
     uint32_t *owner = NULL;
     double *angle = NULL;
-    seam_curves C;
+    sq_param_seam_curves C;
     memset(&C, 0, sizeof C);
     const int integer = (flags & SQ_PARAM_VERIFY_INTEGER) != 0;
 
@@ -531,7 +394,7 @@ sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err)
     if ((st = check_uv_owners(P, &m, owner, who, err)) || (st = check_orientation(P, who, err)) ||
         (st = check_he_seam(P, &m, who, err)) || (st = check_seam_edges(P, &m, integer, who, err)))
         goto done;
-    st = find_curves(&m, P, &C, err);
+    st = sq_param_seam_curves_find(&m, P, &C, err);
     if (st) goto done;
     if ((st = check_curve_transitions(P, &m, &C, who, err)))
         goto done;
@@ -548,7 +411,7 @@ sq_status sq_param_verify(const sq_param *P, unsigned flags, sq_error *err)
 done:
     free(owner);
     free(angle);
-    curves_free(&C);
+    sq_param_seam_curves_free(&C);
     sq_mesh_free(&m);
     if (st == SQ_OK) sq_error_clear(err);
     return st;
@@ -559,7 +422,7 @@ done:
 sq_status sq_param_write_obj(const char *path, const sq_param *P, sq_error *err)
 {
     if (!path) return sq_error_set(err, SQ_ERR_ARGUMENT, "parametrization OBJ: NULL path");
-    sq_status st = check_arrays(P, path, err);
+    sq_status st = sq_param_check_arrays(P, path, err);
     if (st) return st;
     uint32_t *off = malloc(((size_t)P->nf + 1) * sizeof *off);
     if (!off) return sq_error_set(err, SQ_ERR_NOMEM, "%s: out of memory", path);
@@ -568,165 +431,5 @@ sq_status sq_param_write_obj(const char *path, const sq_param *P, sq_error *err)
      * file: doubles round-trip exactly */
     st = sq_write_obj(path, P->nv, P->pos, P->nf, off, P->tri, P->nuv, P->uv, P->tri_uv, err);
     free(off);
-    return st;
-}
-
-/* ---- SVG ---------------------------------------------------------------- */
-
-#define SVG_SIZE 1000.0
-#define SVG_MARGIN 20.0
-#define SVG_TOP 34.0
-#define SVG_LEGEND 46.0
-#define SVG_MAX_FACES_FOR_EDGES 200000u
-
-static const char *curve_colour(uint32_t i)
-{
-    static const char *c[] = {"#e41a1c", "#377eb8", "#4daf4a", "#984ea3", "#ff7f00", "#a65628",
-                              "#f781bf", "#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e",
-                              "#e6ab02", "#17becf"};
-    return c[i % (sizeof c / sizeof c[0])];
-}
-
-const char *sq_param_valence_colour(int32_t k)
-{
-    switch (k) {
-    case 2: return "#b2182b";
-    case 3: return "#ef8a62";
-    case 5: return "#67a9cf";
-    case 6: return "#2166ac";
-    case 7: return "#5e3c99";
-    default: return k < 4 ? "#67001f" : "#053061";
-    }
-}
-
-typedef struct svg_frame {
-    double s, u0, v1;
-} svg_frame;
-
-static double SX(const svg_frame *F, const double *p) { return SVG_MARGIN + (p[0] - F->u0) * F->s; }
-static double SY(const svg_frame *F, const double *p)
-{
-    return SVG_TOP + SVG_MARGIN + (F->v1 - p[1]) * F->s;
-}
-
-sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err)
-{
-    if (!path) return sq_error_set(err, SQ_ERR_ARGUMENT, "parametrization SVG: NULL path");
-    sq_status st = check_arrays(P, path, err);
-    if (st) return st;
-    sq_mesh m;
-    st = sq_param_mesh(P, path, &m, err);
-    if (st) return st;
-    seam_curves C;
-    uint8_t *seen = NULL;
-    st = find_curves(&m, P, &C, err);
-    if (st) {
-        sq_mesh_free(&m);
-        return st;
-    }
-    seen = calloc(P->nuv, 1);
-    if (!seen) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto done;
-    }
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (uint32_t c = 0; c < m.nh; c++) {
-        const double *p = UV(P, P->tri_uv[c]);
-        for (int k = 0; k < 2; k++) {
-            if (p[k] < lo[k]) lo[k] = p[k];
-            if (p[k] > hi[k]) hi[k] = p[k];
-        }
-    }
-    double w = hi[0] - lo[0], h = hi[1] - lo[1], big = w > h ? w : h;
-    svg_frame F = {SVG_SIZE / (big > 0 ? big : 1), lo[0], hi[1]};
-    double W = 2 * SVG_MARGIN + w * F.s, H = SVG_TOP + 2 * SVG_MARGIN + h * F.s + SVG_LEGEND;
-    if (W < 760) W = 760;
-    uint32_t nseam = 0, ncone = 0, hist[9] = {0};
-    for (uint32_t e = 0; e < m.nh; e++)
-        if (C.curve[e] != SQ_NONE && e < m.he_twin[e]) nseam++;
-    if (P->valence)
-        for (uint32_t v = 0; v < P->nv_input; v++)
-            if (P->valence[v] != 4) {
-                ncone++;
-                hist[P->valence[v] < 1 ? 0 : P->valence[v] < 8 ? P->valence[v] : 8]++;
-            }
-    int edges = P->nf <= SVG_MAX_FACES_FOR_EDGES;
-
-    sq_atomic_file af;
-    st = sq_atomic_open(&af, path, err);
-    if (st) goto done;
-    FILE *f = af.fp;
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-               "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\">\n",
-            W, H, W, H);
-    fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
-    fprintf(f, "<text x=\"%.0f\" y=\"22\" font-size=\"13\">UV layout: %" PRIu32 " triangles, %" PRIu32
-               " UV points, %" PRIu32 " seam edges in %" PRIu32 " seam curves, %" PRIu32
-               " cones; %.6g x %.6g grid units%s</text>\n",
-            SVG_MARGIN, P->nf, P->nuv, nseam, C.n, ncone, w, h,
-            edges ? "" : " (inner edges not drawn: too many faces)");
-    /* inner edges: one thin path, each edge once */
-    if (edges) {
-        fprintf(f, "<path fill=\"none\" stroke=\"#b0b0b0\" stroke-width=\"0.25\" d=\"");
-        for (uint32_t e = 0; e < m.nh && !ferror(f); e++) {
-            if (C.curve[e] != SQ_NONE || e > m.he_twin[e]) continue;
-            const double *a = UV(P, P->tri_uv[e]), *b = UV(P, P->tri_uv[m.he_next[e]]);
-            fprintf(f, "M%.2f %.2fL%.2f %.2f", SX(&F, a), SY(&F, a), SX(&F, b), SY(&F, b));
-        }
-        fprintf(f, "\"/>\n");
-    }
-    /* seams: both sides of a curve in the curve's colour */
-    fprintf(f, "<g fill=\"none\" stroke-width=\"1.6\" stroke-linecap=\"round\">\n");
-    for (uint32_t i = 0; i < C.n && !ferror(f); i++) {
-        fprintf(f, "<path stroke=\"%s\" d=\"", curve_colour(i));
-        for (int side = 0; side < 2; side++) {
-            uint32_t h0 = C.first[i], hh = h0, steps = 0;
-            for (;;) {
-                uint32_t e = side ? m.he_twin[hh] : hh;
-                const double *a = UV(P, P->tri_uv[e]), *b = UV(P, P->tri_uv[m.he_next[e]]);
-                fprintf(f, "M%.2f %.2fL%.2f %.2f", SX(&F, a), SY(&F, a), SX(&F, b), SY(&F, b));
-                if (++steps > m.nh) break;
-                uint32_t y = he_dst(&m, hh);
-                if (is_node(&C, P, y)) break;
-                uint32_t g = next_seam_out(&m, &C, hh);
-                if (g == SQ_NONE || g == h0 || C.curve[g] != i || !C.dir[g]) break;
-                hh = g;
-            }
-        }
-        fprintf(f, "\"><title>seam curve %" PRIu32 " from vertex %" PRIu32 "</title></path>\n", i,
-                m.he_vert[C.first[i]]);
-    }
-    fprintf(f, "</g>\n<g stroke=\"black\" stroke-width=\"0.5\">\n");
-    for (uint32_t c = 0; c < m.nh && !ferror(f); c++) {
-        uint32_t v = P->tri[c], t = P->tri_uv[c];
-        if (!is_cone(P, v) || seen[t]) continue;
-        seen[t] = 1;
-        const double *p = UV(P, t);
-        fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3.5\" fill=\"%s\"><title>cone vertex %" PRIu32
-                   ", valence %" PRId32 ", at (%.6g, %.6g)</title></circle>\n",
-                SX(&F, p), SY(&F, p), sq_param_valence_colour(P->valence[v]), v, P->valence[v], p[0], p[1]);
-    }
-    fprintf(f, "</g>\n");
-    /* legend */
-    double x = SVG_MARGIN, y = H - SVG_LEGEND + 14;
-    fprintf(f, "<g font-size=\"11\">\n");
-    for (int32_t k = 1; k <= 8; k++) {
-        if (!hist[k] || k == 4) continue;
-        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"%s\" stroke=\"black\" "
-                   "stroke-width=\"0.5\"/><text x=\"%.0f\" y=\"%.0f\">valence %s%" PRId32
-                   ": %" PRIu32 "</text>\n",
-                x + 4, y - 4, sq_param_valence_colour(k), x + 12, y, k == 8 ? "&gt;=" : "", k, hist[k]);
-        x += 110;
-    }
-    fprintf(f, "<text x=\"%.0f\" y=\"%.0f\">grey: triangles; coloured: seams, one colour per seam "
-               "curve, the same on both of its sides (the two copies are related by a rotation "
-               "by k x 90 degrees plus a translation); dots: UV copies of cones</text>\n",
-            SVG_MARGIN, y + 20);
-    fprintf(f, "</g>\n</svg>\n");
-    st = sq_atomic_commit(&af, err);
-done:
-    free(seen);
-    curves_free(&C);
-    sq_mesh_free(&m);
     return st;
 }

@@ -216,14 +216,7 @@ sq_status sq_omega_angles(const sq_domain *D, const sq_omega *O, uint32_t *angle
 sq_status sq_omega_verify(const sq_domain *D, const sq_cone_tree *T, const sq_omega *O,
                           sq_error *err);
 
-/* ---- picture (sq_omega_svg.c) ------------------------------------------ */
-
-/* SVG of Omega (seed Fig. 1 centre, Fig. 11): quads light, the boundary
- * polygon with Q's sides in one colour per identified pair and both sides
- * of the tree highlighted, cone copies (by valence), branch points (copies
- * of Q's corners) and the root's copies marked. Written atomically. */
-sq_status sq_omega_write_svg(const sq_domain *D, const sq_cone_tree *T, const sq_omega *O,
-                             const char *path, sq_error *err);
+/* Its picture: sq_omega_write_svg (sq_seamless_svg.h). */
 
 #ifdef __cplusplus
 }

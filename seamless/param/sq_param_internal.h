@@ -1,5 +1,5 @@
-/* seamquad: private parts of the parametrization's output checks and
- * pictures (sq_param_io.c, sq_param_cells.c). */
+/* seamquad: private parts of the parametrization shared by its steps, its
+ * check (sq_param_io.c) and its pictures (svg/). */
 #ifndef SQ_PARAM_INTERNAL_H
 #define SQ_PARAM_INTERNAL_H
 
@@ -43,7 +43,55 @@ static inline uint64_t sq_param_max_memory(const sq_param_options *opt)
     return opt->max_memory ? opt->max_memory : SQ_PARAM_MAX_MEMORY;
 }
 
-/* The colour of a cone of valence k in the pictures (sq_param_io.c). */
+/* Arguments and index ranges of P (sq_param_seam_curves.c); a message
+ * naming `who` and the first bad element. */
+sq_status sq_param_check_arrays(const sq_param *P, const char *who, sq_error *err);
+
+static inline uint32_t sq_param_he_dst(const sq_mesh *m, uint32_t h) { return m->he_vert[m->he_next[h]]; }
+
+/* Whether halfedge h of sq_param_mesh(P) is on a seam: its two faces give
+ * its ends different UV points. */
+static inline int sq_param_is_seam(const sq_mesh *m, const sq_param *P, uint32_t h)
+{
+    uint32_t t = m->he_twin[h];
+    return P->tri_uv[h] != P->tri_uv[m->he_next[t]] || P->tri_uv[m->he_next[h]] != P->tri_uv[t];
+}
+
+static inline int sq_param_is_cone(const sq_param *P, uint32_t v)
+{
+    return P->valence && v < P->nv_input && P->valence[v] != 4;
+}
+
+/* The seam curves of P on m = sq_param_mesh(P) (sq_param_seam_curves.c):
+ * maximal chains of seam edges through vertices with exactly two seam
+ * edges that are not cones, or closed loops of such vertices. curve[h]:
+ * the curve of both halfedges of every seam edge, SQ_NONE elsewhere;
+ * dir[h] = 1 for the halfedge along its curve's walking direction;
+ * first[i]: the first halfedge of curve i; sdeg[v]: seam edges at v. */
+typedef struct sq_param_seam_curves {
+    uint32_t n;
+    uint32_t *curve; /* nh */
+    uint8_t *dir;    /* nh */
+    uint32_t *first; /* n  */
+    uint32_t *sdeg;  /* nv */
+} sq_param_seam_curves;
+
+sq_status sq_param_seam_curves_find(const sq_mesh *m, const sq_param *P, sq_param_seam_curves *C, sq_error *err);
+void sq_param_seam_curves_free(sq_param_seam_curves *C);
+/* Whether a curve ends at v (not two seam edges, or a cone). */
+int sq_param_seam_node(const sq_param_seam_curves *C, const sq_param *P, uint32_t v);
+/* The other seam halfedge out of the vertex where halfedge `in` ends (it
+ * has two seam edges and is not a cone), or SQ_NONE. */
+uint32_t sq_param_seam_next_out(const sq_mesh *m, const sq_param_seam_curves *C, uint32_t in);
+
+/* Whether face f's UV triangle is not positive (exact predicate). */
+int sq_param_face_bad(const sq_param *P, uint32_t f);
+/* Labels every face with its cell of Omega (faces joined across edges
+ * with he_cut 0; m = sq_param_mesh(P)); the number of cells, or SQ_NONE
+ * when out of memory (sq_param_cells.c). */
+uint32_t sq_param_label_cells(const sq_param *P, const sq_mesh *m, uint32_t *cell);
+
+/* The colour of a cone of valence k in the pictures (svg/sq_param_svg.c). */
 const char *sq_param_valence_colour(int32_t k);
 
 /* The distortion statistics of P into stats (sym_dirichlet_*,

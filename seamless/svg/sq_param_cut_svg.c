@@ -17,6 +17,7 @@
 #include "sq_io.h"
 #include "sq_mesh.h"
 #include "sq_param.h"
+#include "sq_seamless_svg.h"
 #include "sq_param_internal.h"
 
 #define VIEW 420.0   /* pixels per view                                  */

@@ -408,19 +408,8 @@ sq_status sq_param_simplify_threads(const sq_mesh *m, sq_param *P, uint32_t thre
 sq_status sq_param_soup(const sq_param *P, sq_soup *s, sq_error *err);
 
 /* Writes P as OBJ (v, vt, f a/ta b/tb c/tc), atomically (no partial file on
- * error). */
+ * error). Its pictures: sq_seamless_svg.h. */
 sq_status sq_param_write_obj(const char *path, const sq_param *P, sq_error *err);
-
-/* SVG of the UV layout: triangles (thin), seams coloured by transition,
- * cone points by valence. */
-sq_status sq_param_write_svg(const char *path, const sq_param *P, sq_error *err);
-
-/* SVG of the cut on the surface (sq_param_cut_svg.c): the input mesh m
- * in three orthographic views (front, side, from (1, 1, 1)), shaded and drawn back to
- * front, with P's seams (the cut graph and the cone tree: he_cut 1) where
- * they are visible, cones by valence and the seams' branch points.
- * Written atomically. */
-sq_status sq_param_write_cut_svg(const char *path, const sq_mesh *m, const sq_param *P, sq_error *err);
 
 /* Diagnosis of a map that failed its orientation check (built with
  * sq_param_options.allow_flips; sq_param_cells.c): the cells of Omega on
@@ -448,12 +437,6 @@ typedef struct sq_param_cell {
  * P->he_cut. */
 sq_status sq_param_bad_cells(const sq_param *P, sq_param_cell *cells, uint32_t max, uint32_t *n,
                              sq_error *err);
-
-/* SVG of the given cells (from sq_param_bad_cells), each twice: on the
- * surface (projected on its best-fitting plane) and in UV; bad triangles
- * red, cut edges black, chords blue. Written atomically. */
-sq_status sq_param_write_cells_svg(const char *path, const sq_param *P, const sq_param_cell *cells,
-                                   uint32_t ncells, sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -5,7 +5,8 @@
  * circle (seed Fig. 8 c, d): quads subdividing P coloured by the valence of
  * their metapolygon face, padding quads green, every side drawn in the
  * colour of its pair with its length, corners and cones marked. */
-#include "sq_domain_svg.h"
+#include "sq_domain.h"
+#include "sq_seamless_svg.h"
 
 #include <math.h>
 #include <stdio.h>

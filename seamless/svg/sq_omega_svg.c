@@ -10,6 +10,7 @@
 
 #include "sq_io.h"
 #include "sq_omega.h"
+#include "sq_seamless_svg.h"
 
 #define SIZE 900.0
 #define MARGIN 30.0
