@@ -82,8 +82,8 @@ static void help(FILE *f)
             "  --attempts N        tries before giving up (default %d): when a map fails\n"
             "                      its exact check (a flipped or degenerate UV triangle,\n"
             "                      too many Steiner vertices), try the next cut-graph\n"
-            "                      seed (attempt a uses seed N + a; N + a/2 when the\n"
-            "                      trees alternate, see --tree)\n"
+            "                      seed (attempt a of each kind of --tree uses seed\n"
+            "                      N + a)\n"
             "  --threads N         attempts run at once (default: 2, or 1 on a single\n"
             "                      core): the result is the same as with 1, the lowest\n"
             "                      attempt that passes, found sooner when attempts fail;\n"
@@ -131,23 +131,25 @@ static void help(FILE *f)
             "                      in UV, worst first, with their rectangle and the surface\n"
             "                      length of each side (also on stderr and in --json); the\n"
             "                      map itself is still not written\n"
-            "  --tree MODE         the cone tree with guidance (genus >= 1): surface\n"
-            "                      (default) chooses it on the surface by shortest paths\n"
-            "                      from the disk centre outwards and replicates it in the\n"
-            "                      domain (seed 9.4); domain takes the domain's own\n"
-            "                      shortest tree (passes less often, less distortion when\n"
-            "                      it does); alternate tries both on each cut-graph seed;\n"
-            "                      pair (experimental) grows both trees at once as one\n"
-            "                      plane tree, Q refined where it has no room (where\n"
-            "                      that fails: the surface tree); pair-exact: the same,\n"
-            "                      but the attempt fails where the exact tree does;\n"
-            "                      qtri copies the surface tree into Q triangulated, with\n"
-            "                      edge splits where paths need room (seed 9.4), always\n"
-            "                      the same plane tree; Omega is then made of triangles\n"
-            "                      and the interior map is the overlay; where the cut\n"
-            "                      walls a cone in (genus >= 2), the input's edges between\n"
-            "                      two cut vertices or cones are split at their midpoints\n"
-            "                      (Steiner vertices; --json \"wall_splits\")\n"
+            "  --tree MODE         the cone tree (genus >= 1): auto (default) tries qtri\n"
+            "                      first, then surface as its fallback (--json\n"
+            "                      \"fallback\"): qtri's first attempt, surface's first\n"
+            "                      two, qtri's others (4 in all), surface's others; the\n"
+            "                      lowest that passes is kept. qtri copies the surface\n"
+            "                      tree (seed 9.4: shortest paths from the disk centre\n"
+            "                      outwards) into Q triangulated, with edge splits where\n"
+            "                      paths need room, always the same plane tree; Omega is\n"
+            "                      then made of triangles and the interior map is the\n"
+            "                      overlay (genus 1: with --guide on); where the cut\n"
+            "                      walls a cone in (genus >= 2), the input's edges\n"
+            "                      between two cut vertices or cones are split at their\n"
+            "                      midpoints (--json \"wall_splits\"). surface replicates\n"
+            "                      the surface tree in Q's quad grid (Q's own shortest\n"
+            "                      tree where it cannot) and maps the interior as\n"
+            "                      --interior says. qtri's maps are as little distorted\n"
+            "                      or far less (mpz/helmet 29.5 against 419, mean\n"
+            "                      conformal ratio; bench/bench_param_modes.sh); auto\n"
+            "                      is surface alone where --guide or --interior is given\n"
             "  --interior MODE     the interior map: cells cuts Omega into rectangles by\n"
             "                      chords replayed on the surface and maps each cell by\n"
             "                      Tutte (with --refine rounds); overlay maps the cut\n"
@@ -160,26 +162,13 @@ static void help(FILE *f)
             "                      (default): cells, then the overlay on the same cuts,\n"
             "                      whose map is kept when it passes (docs/param.md, 7');\n"
             "                      overlay tries Omega in unit squares, then in its\n"
-            "                      chords' rectangles; overlay-chords the other way\n"
+            "                      chords' rectangles\n"
             "  --simplify on|off   on (default): the map that passed is simplified: added\n"
             "                      vertices off the seams are removed by edge collapses\n"
             "                      wherever every check still holds and no triangle gets\n"
             "                      more distorted (nothing moves; outputs shrink 2.4 to\n"
             "                      10.7 times; docs/param.md, step 9); off: the map as\n"
             "                      built\n"
-            "  --fallback auto|off auto (default): for genus >= 1, up to 4 attempts\n"
-            "                      from the same seed with --tree qtri (genus 1: --guide\n"
-            "                      on) and a budget of 400 crossings per input face (at\n"
-            "                      most 10,000,000): the first after the first default\n"
-            "                      attempt (beside it, with 2 threads), the others after\n"
-            "                      the second; then the other default attempts; the\n"
-            "                      lowest that passes is kept, except that where the\n"
-            "                      first default attempt passes with the cells' map, the\n"
-            "                      fallback's first, within 50 crossings per input face,\n"
-            "                      replaces it (far less distorted: --json\n"
-            "                      \"replaced_cells\"); mpz/elk and cid/elephant pass\n"
-            "                      through the fallback (5 to 8 s, up to 0.8 GB);\n"
-            "                      off: none\n"
             "  --fans on|off       on (default): in the overlay, where an input edge on\n"
             "                      the cut is split at many of Omega's boundary points,\n"
             "                      the fan of thin triangles joining the pieces to the\n"
@@ -187,7 +176,7 @@ static void help(FILE *f)
             "                      of the same polygon (--json \"fan_vertices\"): 30%%\n"
             "                      fewer crossings on cid/elephant, 29%% on mpz/elk, the\n"
             "                      same guarantees; off: the fans as they are\n"
-            "  --variants N        domains per fallback attempt (default 4; 1: the first\n"
+            "  --variants N        domains per tree qtri attempt (default 4; 1: the first\n"
             "                      only): Algorithm 1's exact ties (a cone as near to two\n"
             "                      edges of the growing domain) broken another way each\n"
             "                      time, while the overlay's sample expects more than\n"
@@ -339,13 +328,12 @@ static void print_json(const char *mesh_path, const char *cones_path, const sq_p
     printf("  \"attempts\": %u,\n  \"seed_used\": %llu,\n  \"guided\": %s,\n  \"surface_tree\": %s,\n",
            s->attempts, (unsigned long long)s->seed_used, s->guided ? "true" : "false",
            s->surface_tree ? "true" : "false");
-    printf("  \"interior\": \"%s\",\n  \"tree_pair\": %s,\n", s->overlay ? "overlay" : "cells",
-           s->tree_pair ? "true" : "false");
+    printf("  \"interior\": \"%s\",\n", s->overlay ? "overlay" : "cells");
     printf("  \"tree_qtri\": %s,\n  \"qtri_verts\": %u,\n  \"qtri_steiner\": %u,\n  \"wall_splits\": %u,\n",
            s->tree_qtri ? "true" : "false", s->qtri_verts, s->qtri_steiner, s->wall_splits);
     printf("  \"cone_splits\": %u,\n", s->cone_splits);
-    printf("  \"fallback\": %s,\n  \"replaced_cells\": %s,\n  \"crossings\": %llu,\n  \"fan_vertices\": %u,\n",
-           s->fallback ? "true" : "false", s->replaced_cells ? "true" : "false", (unsigned long long)s->crossings,
+    printf("  \"fallback\": %s,\n  \"crossings\": %llu,\n  \"fan_vertices\": %u,\n",
+           s->fallback ? "true" : "false", (unsigned long long)s->crossings,
            s->fan_vertices);
     printf("  \"crossings_expected\": %llu,\n  \"domain_variant\": %u,\n", (unsigned long long)s->crossings_expected,
            s->domain_variant);
@@ -401,7 +389,6 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
     printf("attempt        %u (cut-graph seed %llu, %s)\n", s->attempts, (unsigned long long)s->seed_used,
            !s->guided      ? "unguided"
            : s->tree_qtri  ? "guided (seed 9.2), the surface cone tree copied into Q triangulated (tree qtri)"
-           : s->tree_pair  ? "guided (seed 9.2), one plane cone tree grown on the surface and in Q at once (tree pair)"
            : s->surface_tree ? "guided (seed 9.2), cone tree from the surface (seed 9.4)"
                              : "guided (seed 9.2), cone tree from the domain");
     printf("cut graph      %u edges\n", s->cut_edges);
@@ -428,21 +415,18 @@ static void print_text(const char *mesh_path, const sq_param_stats *s, const uin
         printf("interior map   overlay: the cut surface and Omega on one disk, their common "
                "refinement (step 7'); %llu crossings, %u vertices in graded fans\n",
                (unsigned long long)s->crossings, s->fan_vertices);
+    else
+        printf("interior map   cells: Omega cut into %u rectangles by %u chords, Tutte per cell\n",
+               s->cells, s->chords);
     if (s->domain_variant)
         printf("variant        domain %u: Algorithm 1's ties broken another way (the first domain's overlay "
                "expected more crossings; --variants)\n",
                s->domain_variant + 1);
-    else
-        printf("interior map   cells: Omega cut into %u rectangles by %u chords, Tutte per cell\n",
-               s->cells, s->chords);
     if (s->rounds)
         printf("refinement     %u rounds: %u cells with bad triangles halved (step 7c)\n", s->rounds,
                s->cells_refined);
-    if (s->fallback && s->replaced_cells)
-        printf("fallback       the surface tree copied into Q triangulated, overlay: its map replaces the cells' map of "
-               "the default choices (far less distorted)\n");
-    else if (s->fallback)
-        printf("fallback       the default choices failed; the surface tree copied into Q triangulated, overlay\n");
+    if (s->fallback)
+        printf("fallback       tree qtri's attempts failed; the surface tree replicated in Q's quads\n");
     if (s->faces_unsimplified)
         printf("simplified     %u added vertices removed: %u faces -> %u\n", s->simplified,
                s->faces_unsimplified, s->faces_out);
@@ -548,7 +532,7 @@ static int diagnose_cells(const sq_mesh *mesh, const int32_t *val, const sq_para
     sq_param_options opt = *run;
     opt.seed = failed->seed_used ? failed->seed_used : run->seed;
     opt.attempts = 1;
-    opt.tree = failed->surface_tree ? SQ_TREE_SURFACE : SQ_TREE_DOMAIN;
+    opt.tree = failed->tree_qtri ? SQ_TREE_QTRI : SQ_TREE_SURFACE;
     opt.allow_flips = 1;
     opt.progress = NULL, opt.progress_ctx = NULL;
     sq_param P;
@@ -588,8 +572,8 @@ int sq_cmd_param(int argc, char **argv)
     unsigned long long max_crossings = 0, variants = SQ_VARIANTS, variant_gate = SQ_VARIANT_PER_FACE;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     unsigned long long threads = ncpu > 1 ? 2 : 1;
-    int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_SURFACE, interior = SQ_INTERIOR_AUTO;
-    int simplify = SQ_SIMPLIFY_ON, fallback = SQ_FALLBACK_AUTO, fans = SQ_FANS_ON;
+    int guidance = SQ_GUIDE_AUTO, tree = SQ_TREE_AUTO, interior = SQ_INTERIOR_AUTO;
+    int simplify = SQ_SIMPLIFY_ON, fans = SQ_FANS_ON;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -632,23 +616,18 @@ int sq_cmd_param(int argc, char **argv)
             if (!u64_option(a, argv[++i], 1, 1000000, &variant_gate)) return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--tree") && has) {
             if (!keyword_option(a, argv[++i],
-                                KEYWORDS({"alternate", SQ_TREE_ALTERNATE}, {"surface", SQ_TREE_SURFACE},
-                                         {"domain", SQ_TREE_DOMAIN}, {"pair", SQ_TREE_PAIR},
-                                         {"pair-exact", SQ_TREE_PAIR_EXACT}, {"qtri", SQ_TREE_QTRI}),
+                                KEYWORDS({"auto", SQ_TREE_AUTO}, {"surface", SQ_TREE_SURFACE},
+                                         {"qtri", SQ_TREE_QTRI}),
                                 &tree))
                 return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--interior") && has) {
             if (!keyword_option(a, argv[++i],
                                 KEYWORDS({"auto", SQ_INTERIOR_AUTO}, {"cells", SQ_INTERIOR_CELLS},
-                                         {"overlay", SQ_INTERIOR_OVERLAY},
-                                         {"overlay-chords", SQ_INTERIOR_OVERLAY_CHORDS}),
+                                         {"overlay", SQ_INTERIOR_OVERLAY}),
                                 &interior))
                 return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--simplify") && has) {
             if (!keyword_option(a, argv[++i], KEYWORDS({"on", SQ_SIMPLIFY_ON}, {"off", SQ_SIMPLIFY_OFF}), &simplify))
-                return SQ_EXIT_USAGE;
-        } else if (!strcmp(a, "--fallback") && has) {
-            if (!keyword_option(a, argv[++i], KEYWORDS({"auto", SQ_FALLBACK_AUTO}, {"off", SQ_FALLBACK_OFF}), &fallback))
                 return SQ_EXIT_USAGE;
         } else if (!strcmp(a, "--fans") && has) {
             if (!keyword_option(a, argv[++i], KEYWORDS({"on", SQ_FANS_ON}, {"off", SQ_FANS_OFF}), &fans))
@@ -697,7 +676,6 @@ int sq_cmd_param(int argc, char **argv)
     opt.tree = tree;
     opt.interior = interior;
     opt.simplify = simplify;
-    opt.fallback = fallback;
     opt.fans = fans;
     opt.variants = (uint32_t)variants;
     opt.variant_gate = (uint32_t)variant_gate;

@@ -46,7 +46,7 @@ while IFS=$'\t' read -r file _ _ _ _ _ _ closed genus cones _; do
     continue
   fi
   "$bin" param "$mesh" --cones "$cfile" -o "$out.obj" --svg "$out.svg" --domain-svg "$out.omega.svg" --cut-svg "$out.cut.svg" \
-    --seed "$(seed_of "$name")" --attempts 1 --fallback off --json --quiet >"$out.json" 2>"$out.err"
+    --seed "$(seed_of "$name")" --attempts 1 --tree surface --json --quiet >"$out.json" 2>"$out.err"
   rc=$?
   if [ "$name" = twirl ]; then
     if [ $rc -eq 1 ] && grep -q "vertex 4865 has a cone of valence 1" "$out.err" \
@@ -105,11 +105,10 @@ done <"$shared/data/MANIFEST.tsv"
 
 # --- retries: without refinement rounds mpz/cup fails its exact check with
 # seed 8 and passes with the next seed; --attempts 2 must find it and say so
-# in --json (without the fallback, whose first attempt, second in the list,
-# passes at seed 8) ------------------------------------------------------------
+# in --json (with the surface tree alone: tree qtri passes at seed 8) --------
 cup=$shared/data/mpz/cup.obj
 "$bin" param "$cup" --cones "$shared/data/mpz/cup_Th_hat" -o "$tmp/cup_retry.obj" --seed 8 --attempts 2 \
-  --refine 0 --fallback off --json >"$tmp/cup_retry.json" 2>"$tmp/cup_retry.err"
+  --refine 0 --tree surface --json >"$tmp/cup_retry.json" 2>"$tmp/cup_retry.err"
 if [ $? -eq 0 ] && grep -q "retry" "$tmp/cup_retry.err" \
     && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["attempts"]==2 and j["seed_used"]==9 and j["guided"], j' "$tmp/cup_retry.json" \
     && python3 "$referee" "$cup" "$shared/data/mpz/cup_Th_hat" "$tmp/cup_retry.obj" --integer >"$tmp/cup_retry.ref" 2>&1; then
@@ -145,34 +144,30 @@ passes_at() {
   fi
 }
 
-# --- --tree domain: Q's own tree (the surface following it) passes mpz/cup
-# at seed 2, where the surface tree does not; less distortion there --------
-want='j["guided"] and not j["surface_tree"] and j["seed_used"]==2' passes_at cup 2 --tree domain
-# mpz/sculpt (genus 2, 30 cones) passes with Q's own tree at seed 20;
-# mpz/holes3 (genus 3, 24 cones; one of the seed's Table-1 models) with
-# the surface tree at seed 111
-passes_at sculpt 20 --tree domain
-passes_at holes3 111
+# --- mpz/holes3 (genus 3, 24 cones; one of the seed's Table-1 models)
+# with the surface tree at seed 111 ------------------------------------------
+want='j["guided"] and j["surface_tree"] and not j["tree_qtri"]' passes_at holes3 111 --tree surface
 
 # --- --interior overlay: the cut surface and Omega on one disk, their
 # common refinement (no chords, no cells, no rounds): genus 2 (eight),
 # genus 1 (knot1), genus 3 (helmet) ------------------------------------------
 want='j["interior"]=="overlay" and j["chords"]==0 and j["faces_unsimplified"] > 20000 and 2 * j["faces_out"] < j["faces_unsimplified"]' passes_at eight 1 --interior overlay
-# --simplify off: the map as built (the overlay's 24,148 faces on eight)
-want='j["simplified"]==0 and j["faces_unsimplified"]==0 and j["faces_out"] > 20000' passes_at eight 1 --simplify off
-# the default (auto): the cells, then the overlay, kept where it passes
-# (eight), the cells' map where it does not (genus3 seed 1 without the
-# fallback); with the fallback, its map replaces the cells' (genus3: a
-# mean conformal ratio of 207 instead of 5.2e10)
-want='j["interior"]=="overlay" and j["distortion"]["conformal_mean"] < 1000' passes_at eight 1
-want='j["interior"]=="cells" and j["chords"] > 0 and not j["replaced_cells"]' passes_at genus3 1 --fallback off
-want='j["replaced_cells"] and j["fallback"] and j["attempts"]==2 and j["interior"]=="overlay" and j["distortion"]["conformal_mean"] < 1000' passes_at genus3 1
-# block and fertility_tri (genus 3 and 4, 46 and 60 cones) pass through
-# the fallback (tree qtri) only: without it, at every seed tried, the cells
-# need more Steiner vertices than allowed (a clean failure above)
+# --simplify off: the map as built (tree qtri's 17,134 faces on eight,
+# 5,484 simplified)
+want='j["simplified"]==0 and j["faces_unsimplified"]==0 and j["faces_out"] > 10000' passes_at eight 1 --simplify off
+# the default (--tree auto): tree qtri's first attempt, the overlay's map
+# (eight, genus3: a mean conformal ratio of about 200); the surface tree
+# with --interior auto: the cells, then the overlay, kept where it passes,
+# the cells' map where it does not (genus3 seed 1: 5.2e10)
+want='j["interior"]=="overlay" and j["tree_qtri"] and j["attempts"]==1 and not j["fallback"] and j["distortion"]["conformal_mean"] < 1000' passes_at eight 1
+want='j["interior"]=="cells" and j["chords"] > 0 and not j["tree_qtri"]' passes_at genus3 1 --tree surface
+want='j["tree_qtri"] and not j["fallback"] and j["attempts"]==1 and j["interior"]=="overlay" and j["distortion"]["conformal_mean"] < 1000' passes_at genus3 1
+# block and fertility_tri (genus 3 and 4, 46 and 60 cones) pass with tree
+# qtri; with the surface tree alone, at every seed tried, the cells need
+# more Steiner vertices than allowed (a clean failure above)
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
-  want='j["fallback"] and j["tree_qtri"]' passes_at block 1
-  want='j["fallback"] and j["tree_qtri"]' passes_at fertility_tri 5
+  want='j["tree_qtri"] and j["attempts"]==1' passes_at block 1
+  want='j["tree_qtri"] and j["attempts"]==1' passes_at fertility_tri 5
 fi
 want='j["interior"]=="overlay" and j["genus"]==1' passes_at knot1 1 --interior overlay
 want='j["interior"]=="overlay" and j["genus"]==3' passes_at helmet 1 --interior overlay
@@ -187,18 +182,10 @@ else
   bad "--interior overlay femur: rc=$rc $(tail -1 "$tmp/ov_femur.err")"
 fi
 
-# --- --tree pair: both trees grown at once as one plane tree (experimental);
-# on eight and holes3 the map passes, holes3 with the overlay's map ---------
-want='j["guided"] and j["tree_pair"]' passes_at eight 1 --tree pair
-want='j["tree_pair"] and j["interior"]=="overlay"' passes_at holes3 1 --tree pair
-want='not j["tree_pair"]' passes_at eight 1
-# --tree pair-exact with --interior overlay-chords (the fallback's choices)
-# on eight: the exact tree, Omega's rectangles first
-want='j["tree_pair"] and j["interior"]=="overlay"' passes_at eight 1 --tree pair-exact --interior overlay-chords
 # --tree qtri: the surface tree copied into Q triangulated (seed 9.4, edge
 # splits where paths need room), Omega of triangles, the overlay's map:
 # genus 2 (eight), genus 3 (genus3), cup (genus 2, 36 cones)
-want='j["tree_qtri"] and not j["tree_pair"] and j["interior"]=="overlay" and j["qtri_verts"] > 0' passes_at eight 1 --tree qtri
+want='j["tree_qtri"] and j["interior"]=="overlay" and j["qtri_verts"] > 0' passes_at eight 1 --tree qtri
 want='j["tree_qtri"] and j["genus"]==3' passes_at genus3 1 --tree qtri
 # domain variants (docs/param.md): with a gate every domain misses, the one
 # whose overlay expects the fewest crossings of 4; on mpz/holes3 that is
@@ -212,54 +199,48 @@ else
   bad "holes3 --variants 4 --variant-gate 1: the summary does not name the domain variant"
 fi
 want='j["tree_qtri"]' passes_at cup 1 --tree qtri
-# the text summary names the tree that was built (pair, or the surface's)
-for t in pair-exact surface qtri; do
+# the text summary names the tree that was built
+for t in surface qtri; do
   "$bin" param "$shared/data/mpz/eight.obj" --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/tree_$t.obj" \
     --tree "$t" --attempts 1 >"$tmp/tree_$t.txt" 2>&1
 done
-if grep -q "^attempt .*one plane cone tree grown on the surface and in Q at once (tree pair)" "$tmp/tree_pair-exact.txt" \
-    && grep -q "^attempt .*cone tree from the surface (seed 9.4)" "$tmp/tree_surface.txt" \
+if grep -q "^attempt .*cone tree from the surface (seed 9.4)" "$tmp/tree_surface.txt" \
     && grep -q "^attempt .*the surface cone tree copied into Q triangulated (tree qtri)" "$tmp/tree_qtri.txt"; then
   ok
 else
   bad "eight: the summary does not name the tree built: $(grep '^attempt' "$tmp"/tree_*.txt)"
 fi
 
-# --- the fallback for genus 1 (default --fallback auto): mpz/elk, where
-# every attempt with the default choices fails, passes with the guided
-# domain, the surface tree copied into Q triangulated and the overlay
-# (attempt 2 = the fallback's first, seed 2). About 30 s in Release and a
-# 700,000-face output for the referee: not under the sanitizers, which
-# would take many minutes
+# --- tree qtri for genus 1 (the default --tree auto): mpz/elk, where
+# every attempt with the surface tree fails, passes at the first, with the
+# guided domain, the surface tree copied into Q triangulated and the
+# overlay (seed 2). About 15 s in Release and a 330,000-face output for
+# the referee: not under the sanitizers, which would take many minutes
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
-  want='j["fallback"] and j["tree_qtri"] and j["guided"] and j["interior"]=="overlay" and j["attempts"]==2 and j["seed_used"]==2 and j["genus"]==1' passes_at elk 2
+  want='not j["fallback"] and j["tree_qtri"] and j["guided"] and j["interior"]=="overlay" and j["attempts"]==1 and j["seed_used"]==2 and j["genus"]==1' passes_at elk 2
 else
-  echo "SKIP mpz/elk --fallback auto (sanitizer build)"
+  echo "SKIP mpz/elk --tree auto (sanitizer build)"
 fi
 
-# --- the genus>=2 fallback (default --fallback auto): where the default
-# attempts fail (here forced by a Steiner budget of 50, which the cells
-# cannot keep), the surface tree copied into Q triangulated and the overlay
-# (cid/elephant passes so with the defaults: docs/param.md, too slow here);
-# the summary says which fallback made the map
-want='j["fallback"] and j["tree_qtri"] and j["attempts"]==2 and j["interior"]=="overlay"' passes_at eight 1 --max-steiner 50
+# --- the fallback (default --tree auto): where tree qtri's attempts fail
+# (here forced by an overlay budget of 1 crossing), the surface tree
+# replicated in Q's quads and the cells' map; the summary says so. The
+# order of the attempts: qtri's first (failing here), then the surface
+# tree's first passes: attempt 2, seed 1
+want='j["fallback"] and not j["tree_qtri"] and j["attempts"]==2 and j["seed_used"]==1 and j["interior"]=="cells"' passes_at eight 1 --max-crossings 1 --attempts 16
 "$bin" param "$shared/data/mpz/eight.obj" --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/fb2.obj" --attempts 1 \
-  --max-steiner 50 >"$tmp/fb2.txt" 2>&1
-if grep -q "^fallback *the default choices failed; the surface tree copied into Q triangulated" "$tmp/fb2.txt"; then
+  --max-crossings 1 >"$tmp/fb2.txt" 2>&1
+if grep -q "^fallback *tree qtri's attempts failed; the surface tree replicated in Q's quads" "$tmp/fb2.txt"; then
   ok
 else
-  bad "eight --max-steiner 50: the summary does not name the genus>=2 fallback: $(grep -i fallback "$tmp/fb2.txt")"
+  bad "eight --max-crossings 1: the summary does not name the fallback: $(grep -i fallback "$tmp/fb2.txt")"
 fi
-
-# the order of the attempts with the fallback: the default choices' first
-# (failing here), then the fallback's first passes: attempt 2, seed 1
-want='j["fallback"] and j["tree_qtri"] and j["attempts"]==2 and j["seed_used"]==1' passes_at eight 1 --attempts 16 --max-steiner 50
 # mpz/femur: every cut-graph seed walls a cone in (the surface tree cannot
-# reach it past the cut's vertices and the cones); the fallback splits the
+# reach it past the cut's vertices and the cones); tree qtri splits the
 # input edges between two such vertices at their midpoints and passes at
-# attempt 2, seed 1 (before: the cells at attempt 7, seed 3, a mean
-# conformal ratio of 2.55e8 against about 108)
-want='j["fallback"] and j["attempts"]==2 and j["seed_used"]==1 and j["wall_splits"]>0 and j["distortion"]["conformal_mean"]<1000' passes_at femur 1 --attempts 16
+# attempt 1, seed 1 (the surface tree: the cells at attempt 7, seed 3, a
+# mean conformal ratio of 2.55e8 against about 41)
+want='not j["fallback"] and j["attempts"]==1 and j["seed_used"]==1 and j["wall_splits"]>0 and j["distortion"]["conformal_mean"]<1000' passes_at femur 1 --attempts 16
 
 # --- genus 1 with --guide on: Algorithm 1 for the meta-6-gon, the
 # meta-2-gon's cones near the circle (seed 9.2 per piece): mpz/knot1
@@ -279,11 +260,10 @@ fi
 
 # --- refinement rounds (step 7c): mpz/helmet seed 1 fails without them and
 # passes with them; --json counts the rounds, the text report names them
-# (the cells alone: by default the overlay's map would replace theirs; no
-# fallback, whose tree qtri passes there) --------------------------------------
+# (the surface tree and the cells alone: tree qtri passes there) ------------
 helmet=$shared/data/mpz/helmet.obj
 "$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h0.obj" --attempts 1 --refine 0 \
-  --fallback off --quiet >/dev/null 2>"$tmp/h0.err"
+  --tree surface --quiet >/dev/null 2>"$tmp/h0.err"
 rc0=$?
 "$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h1.obj" --attempts 1 --json \
   --interior cells --quiet >"$tmp/h1.json" 2>"$tmp/h1.err"
@@ -300,11 +280,11 @@ else
 fi
 
 # --- --diagnose: mpz/holes3 seed 1 fails by a few triangles (without
-# refinement rounds, and without the genus>=2 fallback, which would pass);
+# refinement rounds, with the surface tree alone: tree qtri would pass);
 # the failing cells are drawn and reported, the map is still not written -------------------------------------------------------------
 h3=$shared/data/mpz/holes3.obj
 "$bin" param "$h3" --cones "$shared/data/mpz/holes3_Th_hat" -o "$tmp/diag.obj" --seed 1 --attempts 1 --refine 0 \
-  --fallback off --diagnose "$tmp/diag.svg" --json --quiet >"$tmp/diag.json" 2>"$tmp/diag.err"
+  --tree surface --diagnose "$tmp/diag.svg" --json --quiet >"$tmp/diag.json" 2>"$tmp/diag.err"
 if [ $? -eq 3 ] && [ ! -e "$tmp/diag.obj" ] && grep -q "<svg" "$tmp/diag.svg" && grep -q "</svg>" "$tmp/diag.svg" \
     && grep -q "diagnosis (seed 1)" "$tmp/diag.err" \
     && python3 -c '
@@ -366,12 +346,11 @@ expect "bad --attempts" 2 "attempts" -- "$knot" --cones "$knot_cones" -o "$tmp/e
 expect "bad --refine" 2 "refine" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --refine 65
 expect "bad --max-steiner" 2 "max-steiner" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-steiner 0
 # a Steiner budget the cut cannot keep: a clean failure that names it
-# genus 2 with --fallback off: the default attempt's failure alone (with
-# the fallback, eight passes so: above)
-expect "--fallback off (genus 2)" 3 "Steiner vertices" -- "$shared/data/mpz/eight.obj" \
-  --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/e/x.obj" --attempts 1 --max-steiner 50 --fallback off
+# genus 2 with the surface tree alone: its attempt's failure alone
+expect "--tree surface (genus 2)" 3 "Steiner vertices" -- "$shared/data/mpz/eight.obj" \
+  --cones "$shared/data/mpz/eight_Th_hat" -o "$tmp/e/x.obj" --attempts 1 --max-steiner 50 --tree surface
 expect "--max-steiner 10" 3 "more than 10 Steiner vertices" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
-  --max-steiner 10 --attempts 1 --fallback off
+  --max-steiner 10 --attempts 1 --tree surface
 for v in 0 10M 2T abc -1; do
   expect "bad --max-memory $v" 2 "max-memory needs a size" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-memory "$v"
 done
@@ -391,7 +370,7 @@ expect "bad --guide" 2 "guide" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj
 expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --tree random
 # a crossing budget the overlay cannot keep: a clean failure that names it
 expect "--max-crossings 100" 3 "more than 100 crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" \
-  --interior overlay-chords --max-crossings 100 --attempts 1
+  --interior overlay --max-crossings 100 --attempts 1
 expect "bad --max-crossings" 2 "max-crossings" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --max-crossings 0
 expect "bad --variants" 2 "variants" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --variants 0
 # a device as the output (/dev/null) is written in place, never replaced
@@ -408,11 +387,7 @@ fi
 # tree qtri where the cut walls a cone in (helmet at seed 1): the edges
 # between two blocked vertices split at their midpoints, the tree passes
 want='j["tree_qtri"] and j["wall_splits"]>0' passes_at helmet 1 --tree qtri
-# where the exact tree cannot be built, pair-exact fails the attempt (no
-# fallback to Q's own tree): helmet at seed 1, a cone walled in by the cut
-expect "--tree pair-exact" 3 "exact plane tree (tree pair-exact) failed" -- "$shared/data/mpz/helmet.obj" \
-  --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/e/x.obj" --tree pair-exact --attempts 1
-expect "bad --fallback" 2 "fallback" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --fallback always
+expect "bad --tree" 2 "tree" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --tree pair
 expect "bad --simplify" 2 "simplify" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --simplify maybe
 expect "two meshes" 2 "unexpected argument" -- "$knot" "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj"
 expect "same output twice" 2 "two outputs" -- "$knot" --cones "$knot_cones" -o "$tmp/e/x.obj" --svg "$tmp/e/x.obj"

@@ -105,11 +105,6 @@ void sq_domain_side_vertices(const sq_domain *D, uint32_t side, uint32_t *verts)
  * have equal lengths, and the glued mesh is closed, manifold, oriented,
  * connected, of genus g, with vertices of valence != 4 exactly the cones.
  * SQ_ERR_INTERNAL names the first violation. */
-/* D with every quad of Q split into 2 x 2 (sq_domain_refine.c): lengths
- * double, Q's vertices keep their indices, quads 4f .. 4f+3 subdivide old
- * quad f; out is freed first (it must be initialized). */
-sq_status sq_domain_refine2(const sq_domain *D, sq_domain *out, sq_error *err);
-
 sq_status sq_domain_verify(const sq_domain *D, const int32_t *valences, uint32_t ncones,
                            sq_error *err);
 

@@ -177,34 +177,6 @@ sq_status sq_cone_tree_guided(const sq_metapolygon *Q, uint32_t n, const uint32_
                               const double *root_cost, uint32_t *att_qvertex, uint32_t *att_qstep, double *att_qfrac, sq_cone_tree *T,
                               sq_error *err);
 
-/* Seed 9.4 on the surface and in Q at once, as one plane tree
- * (sq_guide_replica.c), so that the surface needs no routing for Q's tree
- * (seed 7: compatible cuts). qv[j] is the cone of Q standing for cone[j]
- * of m, in step (radial) order. Step j: the surface path from cone[j] to
- * the nearest tree vertex x through vertices neither on G's cut nor cones
- * (as sq_guide_surface_tree), then Q's path (breadth-first, through free
- * interior vertices) from qv[j] to the copy of x when x is a node (a cone
- * or where an earlier path joined), else to a new node inside the copy of
- * x's segment near the same place along it; Q's path arrives in the same
- * sector (the first tree edge counterclockwise from its last edge is the
- * copy of the surface's). Where Q has no room for that, x (or its
- * segment) is not taken as an end again in this step and the surface path
- * is chosen anew. Then the surface root path to the nearest side
- * (sq_guide_surface_root, into root: step root_step), root_cost (user, root,
- * cost) fills cost (Q->nv; INFINITY: not a root) for Q's root path, which
- * leaves qv[root_step] in the surface root path's sector and ends at the
- * flat boundary vertex minimizing edges plus cost. Out: tree_next (m->nv)
- * as sq_guide_surface_tree's, without the root path; att_vertex and
- * att_qvertex (n): where each path ends on the surface and in Q. T is
- * replaced. SQ_ERR_SOLVER when some step or the root finds no place (the
- * caller may fall back to sq_guide_surface_tree and sq_cone_tree_guided). */
-typedef sq_status (*sq_guide_root_cost_fn)(void *user, const sq_guide_root *root, double *cost);
-
-sq_status sq_guide_tree_pair(const sq_metapolygon *Q, const uint32_t *qv, const sq_mesh *m, const sq_cut_graph *G,
-                             const uint32_t *cone, uint32_t n, uint32_t root_step, sq_guide_root_cost_fn root_cost,
-                             void *user, uint32_t *tree_next, uint32_t *att_vertex, uint32_t *att_qvertex,
-                             sq_guide_root *root, sq_cone_tree *T, sq_error *err);
-
 #ifdef __cplusplus
 }
 #endif

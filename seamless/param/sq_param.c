@@ -164,12 +164,12 @@ static sq_status interior_step(ctx *c, const int32_t *valence, sq_param *out, sq
 {
     const sq_param_options *opt = c->opt;
     sq_status st = SQ_OK;
-    if (opt->interior == SQ_INTERIOR_OVERLAY || opt->interior == SQ_INTERIOR_OVERLAY_CHORDS || c->qtri) {
+    if (opt->interior == SQ_INTERIOR_OVERLAY || c->qtri) {
         /* step 7' instead of 6-7c (Omega of triangles: its faces alone) */
         progress(c, "disk maps", 0.55);
         stats->overlay = 1;
         /* checks every triangle too */
-        st = sq_param_overlay_map(c, valence, c->qtri ? 0 : opt->interior == SQ_INTERIOR_OVERLAY ? 1 : 2, out, stats);
+        st = sq_param_overlay_map(c, valence, !c->qtri, out, stats);
         if (st == SQ_OK) t->check = sq_now();
         return st;
     }
@@ -215,7 +215,6 @@ static sq_status build_once(const build_in *in, sq_cut_graph *given_G, sq_cut_gr
     progress(&c, "cone tree", 0.3);
     st = surface_step(&c, in, hmap);
     if (st) goto done;
-    stats->tree_pair = c.tree_exact;
     stats->tree_qtri = c.qtri, stats->qtri_verts = c.qt_verts, stats->qtri_steiner = c.qt_steiner;
     double t1 = sq_now();
     progress(&c, "boundary map", 0.45);

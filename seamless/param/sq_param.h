@@ -61,9 +61,7 @@ typedef struct sq_param_options {
      * budget) are retried; the result is the first map that passes every
      * exact check. */
     uint32_t attempts;
-    /* The cone tree with guidance (genus >= 1), SQ_TREE_*: chosen on the
-     * surface and replicated in Q (seed 9.4), or Q's own shortest tree.
-     * Default SQ_TREE_SURFACE. */
+    /* The cone tree (genus >= 1), SQ_TREE_* below. Default SQ_TREE_AUTO. */
     int tree;
     /* Refinement rounds per attempt (step 7c): when some triangles are bad
      * after the interior map, the cells of Omega holding them are halved
@@ -76,7 +74,7 @@ typedef struct sq_param_options {
     uint64_t max_steiner;
     /* Crossings of surface and domain edges the overlay (step 7') may make
      * before it gives up (SQ_ERR_SOLVER); 0: the Steiner budget above (with
-     * SQ_TREE_QTRI and in the fallback: 400 per input face, at most
+     * tree qtri: SQ_QTRI_PER_FACE (400) per input face, at most
      * 10,000,000, at least the Steiner budget). The overlay stops at its
      * sample where that expects more than 5/4 of it (sq_overlay.h). */
     uint64_t max_crossings;
@@ -97,22 +95,6 @@ typedef struct sq_param_options {
      * (sq_param_simplify: added vertices off the seams removed where every
      * check still holds); SQ_SIMPLIFY_OFF: the map as built. */
     int simplify;
-    /* SQ_FALLBACK_AUTO (default): for genus >= 1 with the other choices
-     * at their defaults, up to 4 attempts (from the same seed, one at a
-     * time) with SQ_TREE_QTRI (genus 1: with SQ_GUIDE_ON), the same
-     * Steiner budget and a crossing budget of 400 per input face (at most
-     * 10,000,000; max_crossings, when given, instead), in the list of
-     * attempts: the first after the default choices' first attempt (so
-     * with two threads beside it), the others after the first
-     * SQ_FALLBACK_AFTER (2) default attempts, then the default choices'
-     * others; the lowest that passes is the result, except that where the
-     * first default attempt passes with the cells' map (not the overlay's),
-     * the fallback's first attempt goes on, with a crossing budget of
-     * SQ_REPLACE_PER_FACE (50) per input face, and its map, far less
-     * distorted, replaces the cells' where it passes (replaced_cells). It
-     * passes mpz/elk and cid/elephant, which nothing else does, in 5 to
-     * 8 s (docs/param.md). SQ_FALLBACK_OFF: none. */
-    int fallback;
     /* SQ_FANS_ON (default): in the overlay (step 7'), the fans of thin
      * triangles along the cut (an input edge on the cut split at Omega's
      * boundary points, every piece joined to the opposite vertex) are
@@ -121,7 +103,7 @@ typedef struct sq_param_options {
      * 30%, mpz/elk 29%), the same guarantees. SQ_FANS_OFF: the fans as
      * they are. */
     int fans;
-    /* Tree qtri (genus >= 1, so the fallback): Algorithm 1's ties broken
+    /* Tree qtri (genus >= 1): Algorithm 1's ties broken
      * another way (sq_guide_glue.variant), up to `variants` domains per
      * attempt while the overlay's sample expects more than variant_gate
      * crossings per input face; where none is under it, the one expecting
@@ -161,17 +143,16 @@ typedef struct sq_param_options {
 #define SQ_BYTES_PER_DOMAIN_QUAD 2000u
 
 /* SQ_INTERIOR_OVERLAY triangulates Omega in its unit squares, and where
- * that fails in its chords' rectangles; SQ_INTERIOR_OVERLAY_CHORDS the
- * other way round (fewer triangles where Omega is large against the
- * surface, as after the exact tree's 2 x 2 refinements; docs/param.md). */
-enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2, SQ_INTERIOR_OVERLAY_CHORDS = 3 };
+ * that fails in its chords' rectangles (docs/param.md). */
+enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2 };
 enum { SQ_SIMPLIFY_ON = 0, SQ_SIMPLIFY_OFF = 1 };
-enum { SQ_FALLBACK_AUTO = 0, SQ_FALLBACK_OFF = 1 };
 enum { SQ_FANS_ON = 0, SQ_FANS_OFF = 1 };
-#define SQ_FALLBACK_ATTEMPTS 4
-#define SQ_FALLBACK_AFTER 2
-#define SQ_FALLBACK_PER_FACE 400u
-#define SQ_REPLACE_PER_FACE 50u
+/* SQ_TREE_AUTO: tree qtri's attempts (at most SQ_QTRI_ATTEMPTS), the
+ * surface tree's after its first (from the SQ_SURFACE_AFTER-th on, the
+ * surface tree's and qtri's others in turn; sq_param_attempts.c) */
+#define SQ_QTRI_ATTEMPTS 4
+#define SQ_SURFACE_AFTER 2
+#define SQ_QTRI_PER_FACE 400u
 #define SQ_QTRI_MAX_CROSSINGS 10000000u
 /* tree qtri: domains per attempt (Algorithm 1's ties broken otherwise)
  * while the overlay's sample expects more than SQ_VARIANT_PER_FACE
@@ -181,37 +162,28 @@ enum { SQ_FANS_ON = 0, SQ_FANS_OFF = 1 };
 
 #define SQ_PARAM_REFINE 8
 
-/* Cone tree modes (sq_param_options.tree; only with guidance, genus >= 1):
- *  SQ_TREE_SURFACE: the surface tree (seed 9.4), Q's tree only where the
- *    surface tree cannot be replicated in Q. It passes most often (random
- *    cone sets: 38 of 45, against 34 with Q's tree), but where both pass,
- *    Q's tree gave the lower distortion (docs/param.md);
- *  SQ_TREE_DOMAIN: Q's shortest tree, the surface following it;
- *  SQ_TREE_ALTERNATE: attempts alternate the two on each cut-graph seed
- *    (attempt a: seed + a / 2, the surface tree first); fewer seeds for the
- *    same attempts (34 of 45);
- *  SQ_TREE_PAIR: both trees grown at once as one plane tree, every
- *    surface path's end copied exactly in Q (refined 2 x 2 where its grid
- *    has no room; sq_guide_tree_pair), so the surface tree needs no
- *    Steiner vertex; where that fails, as SQ_TREE_SURFACE. Experimental:
- *    it makes mpz/elk pass with the overlay (docs/param.md);
- *  SQ_TREE_PAIR_EXACT: the same, but where the exact copy fails the
- *    attempt fails (SQ_ERR_SOLVER) instead of falling back to the surface
- *    tree, whose winding paths leave the overlay no chance;
+/* Cone tree modes (sq_param_options.tree; genus >= 1):
+ *  SQ_TREE_AUTO (default): where the other choices are at their defaults,
+ *    tree qtri's first attempt, then the surface tree's first
+ *    SQ_SURFACE_AFTER attempts, then qtri's others (at most
+ *    SQ_QTRI_ATTEMPTS in all), then the surface tree's others; the lowest
+ *    that passes is the result (stats.fallback: the surface tree's). On
+ *    the shared models qtri passes first on every one of genus >= 1, with
+ *    a mean conformal ratio as low as the surface tree's or far lower
+ *    (helmet 29.5 against 419, rocker_arm 735 against 2e8;
+ *    bench/bench_param_modes.sh). Otherwise, and for genus 0, as
+ *    SQ_TREE_SURFACE.
+ *  SQ_TREE_SURFACE: with guidance, the surface tree (seed 9.4) replicated
+ *    in Q's quad grid, Q's own shortest tree where it cannot be; the
+ *    interior map by cells or overlay (sq_param_options.interior).
  *  SQ_TREE_QTRI: seed 9.4 as the seed does it: the surface tree copied
  *    into Q triangulated, room made by edge splits along the paths only
  *    (sq_qtri.h), Omega laid out from it (triangles, dyadic positions) and
- *    the interior map by overlay (the cells need Q's quads). The same plane
- *    tree on both sides always (a tree does not separate a disk); the
- *    attempt fails where the surface tree leaves a cone unjoined. */
-enum {
-    SQ_TREE_SURFACE = 0,
-    SQ_TREE_DOMAIN = 1,
-    SQ_TREE_ALTERNATE = 2,
-    SQ_TREE_PAIR = 3,
-    SQ_TREE_PAIR_EXACT = 4,
-    SQ_TREE_QTRI = 5
-};
+ *    the interior map by overlay (the cells need Q's quads); genus 1 with
+ *    guidance (SQ_GUIDE_AUTO means on here). The same plane tree on both
+ *    sides always (a tree does not separate a disk); the attempt fails
+ *    where the surface tree leaves a cone unjoined. */
+enum { SQ_TREE_AUTO = 0, SQ_TREE_SURFACE = 1, SQ_TREE_QTRI = 2 };
 
 /* Guidance modes (sq_param_options.guidance):
  *  SQ_GUIDE_AUTO: SQ_GUIDE_ON for genus >= 2, SQ_GUIDE_OFF below (where
@@ -263,7 +235,6 @@ typedef struct sq_param_stats {
     int guided;                             /* 1: seed 9.2 guidance was used  */
     int surface_tree;                       /* 1: the seed 9.4 surface tree   */
     int overlay;                            /* 1: interior map by overlay     */
-    int tree_pair;                          /* 1: SQ_TREE_PAIR's exact copy   */
     int tree_qtri;                          /* 1: SQ_TREE_QTRI: Omega from Q  */
                                             /* triangulated (triangles)       */
     uint32_t qtri_verts;                    /* its vertices, with the tree's  */
@@ -276,10 +247,6 @@ typedef struct sq_param_stats {
     uint32_t domain_variant;                /* tree qtri: Algorithm 1's tie   */
                                             /* order of the result's domain   */
                                             /* (0: the first)                 */
-    int replaced_cells;                     /* 1: the default choices' first  */
-                                            /* attempt passed with the cells' */
-                                            /* map; the fallback's first one, */
-                                            /* far less distorted, replaced it */
     uint32_t wall_splits;                   /* tree qtri: input edges split   */
                                             /* at their midpoints where the   */
                                             /* cut walled a cone in (0: none) */
@@ -298,9 +265,8 @@ typedef struct sq_param_stats {
                                             /* added vertex from its input    */
                                             /* face over the diagonal         */
                                             /* (sq_param_verify_refinement)   */
-    int fallback;                           /* 1: the fallback made the map   */
-                                            /* (SQ_FALLBACK_AUTO; tree qtri,  */
-                                            /* so tree_qtri is set)           */
+    int fallback;                           /* 1: SQ_TREE_AUTO's fallback, the */
+                                            /* surface tree, made the map     */
     /* seconds per step (of the last attempt; t_total covers all) */
     double t_cut, t_domain, t_omega, t_tree, t_boundary, t_cells, t_tutte, t_check, t_total;
     double t_overlay; /* step 7' (after the cells by default; kept or not) */

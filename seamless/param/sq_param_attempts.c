@@ -12,17 +12,12 @@
  * without SQ_ERR_SOLVER, the attempts after it are cancelled and the ones
  * before it are awaited, so the result is the same as one after another,
  * only sooner. Progress is reported for the lowest attempt still running.
- * With the fallback, its first attempt sits in the same list after the
- * default choices' first, its others after their second (sq_param_build),
- * so with two threads its first one runs from the start; they are heavy:
- * nothing starts beside one (it holds up to a gigabyte and runs its
- * overlay and simplification in two threads), but it may start beside a
- * default attempt already running. One exception to "the lowest that
- * passes": where the first attempt passes with the cells' map, the
- * fallback's first goes on (or starts) with a budget of
- * SQ_REPLACE_PER_FACE crossings per input face, and its map replaces the
- * cells' where it passes (replaces_cells); that too does not depend on
- * the threads. */
+ * With SQ_TREE_AUTO (genus >= 1, the other choices at their defaults),
+ * tree qtri's first attempt comes first and the surface tree's are its
+ * fallback (sq_param_build's order, build_attempts). Tree qtri's attempts
+ * are heavy: nothing starts beside one (it holds up to a gigabyte and
+ * runs its overlay and simplification in two threads), but one may start
+ * beside a surface tree's attempt already running. */
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -34,24 +29,18 @@
 #include "sq_param.h"
 #include "sq_param_internal.h"
 
-/* The options of attempt a. */
-static sq_param_options attempt_options(const sq_param_options *o, uint32_t a, int alternate)
+/* The options of attempt a of one kind: the cut-graph seed seed + a. */
+static sq_param_options attempt_options(const sq_param_options *o, uint32_t a)
 {
     sq_param_options x = *o;
-    x.seed = o->seed + (alternate ? a / 2 : a);
-    if (alternate) x.tree = a % 2 ? SQ_TREE_DOMAIN : SQ_TREE_SURFACE;
+    x.seed = o->seed + a;
     return x;
-}
-
-static const char *retry_message(int alternate, uint32_t a)
-{
-    return alternate && a % 2 ? "retry with the domain's cone tree" : "retry with another cut graph";
 }
 
 typedef struct job {
     sq_param_options o;
     const char *msg; /* progress line once it is the lowest still running */
-    int heavy;       /* the fallback's: nothing starts beside it          */
+    int heavy;       /* tree qtri's: nothing starts beside it             */
     sq_param out;
     sq_param_stats stats;
     sq_error err;
@@ -74,7 +63,6 @@ typedef struct pool {
     uint32_t next;   /* the next attempt to start                         */
     uint32_t ended;  /* the lowest attempt that ended without SQ_ERR_SOLVER */
     uint32_t lowest; /* the lowest attempt not done: it reports progress  */
-    uint64_t replace_limit; /* crossings for replacing a cells map (0: no) */
 } pool;
 
 static void job_progress(void *ctx, const char *stage, double f)
@@ -84,23 +72,6 @@ static void job_progress(void *ctx, const char *stage, double f)
     pthread_mutex_lock(&P->mu);
     if ((uint32_t)(J - P->jobs) == P->lowest && P->o->progress) P->o->progress(P->o->progress_ctx, stage, f);
     pthread_mutex_unlock(&P->mu);
-}
-
-/* Whether the fallback's first attempt (list position 1) replaces the
- * first's: that passed with the cells' map (no overlay), and the
- * fallback's passes, if it has ended, within replace_limit crossings,
- * with its first domain (its variants stop once the limit is set) and an
- * expectation at most a quarter above the limit (as the overlay requires
- * once the limit is set: the same whenever it was set). Before it ends:
- * whether it may still. */
-static int replaces_cells(const pool *P)
-{
-    const job *A = &P->jobs[0], *B = &P->jobs[1];
-    const uint64_t L = P->replace_limit;
-    if (!L || P->n < 2 || !B->heavy) return 0;
-    if (!A->done || A->st != SQ_OK || A->stats.overlay) return 0;
-    return !B->done || (B->st == SQ_OK && B->stats.crossings <= L && B->stats.domain_variant == 0 &&
-                        B->stats.crossings_expected <= L + L / 4);
 }
 
 static void *worker(void *arg)
@@ -123,13 +94,8 @@ static void *worker(void *arg)
         J->done = 1;
         if (J->heavy) P->heavy_running = 0;
         if (J->st != SQ_ERR_SOLVER && a < P->ended) {
-            /* a cells map of the first attempt may yield to the fallback's
-             * first (replaces_cells): that one goes on (or starts), with
-             * the budget of such a replacement */
-            const int provisional = replaces_cells(P);
-            P->ended = provisional ? 1 : a;
-            if (provisional) atomic_store(&P->jobs[1].limit, P->replace_limit);
-            for (uint32_t b = P->ended + 1; b < P->n; b++) atomic_store(&P->jobs[b].cancel, 1);
+            P->ended = a;
+            for (uint32_t b = a + 1; b < P->n; b++) atomic_store(&P->jobs[b].cancel, 1);
         }
         if (a == P->lowest) {
             /* as one after another: the line of every attempt after the
@@ -147,15 +113,13 @@ static void *worker(void *arg)
 
 /* Runs the attempts jobs[0, n) (their options, messages and heaviness
  * set) on `threads` threads in order, as described at the top; *pick: the
- * result, the lowest that ended without SQ_ERR_SOLVER (else the last),
- * or the fallback's first where it replaces the first's cells map
- * (replace_limit crossings; 0: never). */
+ * result, the lowest that ended without SQ_ERR_SOLVER (else the last). */
 static sq_status run_jobs(const sq_mesh *m, const int32_t *valence, const sq_param_options *o, job *jobs,
-                          uint32_t n, uint32_t threads, uint64_t replace_limit, uint32_t *pick, sq_error *err)
+                          uint32_t n, uint32_t threads, uint32_t *pick, sq_error *err)
 {
     pool P;
     memset(&P, 0, sizeof P);
-    P.m = m, P.valence = valence, P.o = o, P.n = n, P.jobs = jobs, P.replace_limit = replace_limit;
+    P.m = m, P.valence = valence, P.o = o, P.n = n, P.jobs = jobs;
     P.ended = n, P.lowest = 0;
     pthread_t *th = calloc(threads, sizeof *th);
     if (!th || pthread_mutex_init(&P.mu, NULL) != 0) {
@@ -184,15 +148,13 @@ static sq_status run_jobs(const sq_mesh *m, const int32_t *valence, const sq_par
     pthread_cond_destroy(&P.cv);
     pthread_mutex_destroy(&P.mu);
     free(th);
-    /* the lowest that passed (else the last), or the replacement of its
-     * cells map */
+    /* the lowest that passed (else the last) */
     uint32_t lo = n ? n - 1 : 0;
     for (uint32_t a = 0; a < n; a++)
         if (jobs[a].done && jobs[a].st != SQ_ERR_SOLVER) {
             lo = a;
             break;
         }
-    if (lo == 0 && replaces_cells(&P) && jobs[1].done) lo = 1;
     *pick = lo;
     return SQ_OK;
 }
@@ -200,47 +162,46 @@ static sq_status run_jobs(const sq_mesh *m, const int32_t *valence, const sq_par
 uint64_t sq_param_crossing_budget(const sq_param_options *o, uint32_t nv, uint32_t nf)
 {
     uint64_t base = sq_param_steiner_budget(o, nv);
-    uint64_t per = SQ_FALLBACK_PER_FACE * (uint64_t)nf;
+    uint64_t per = SQ_QTRI_PER_FACE * (uint64_t)nf;
     if (per > SQ_QTRI_MAX_CROSSINGS) per = SQ_QTRI_MAX_CROSSINGS;
     return per > base ? per : base;
 }
 
-/* The fallbacks (SQ_FALLBACK_AUTO): only where the caller left the
- * choices they override at their defaults. */
-static int uses_fallback(const sq_param_options *o, int64_t genus)
+/* SQ_TREE_AUTO's two kinds of attempts: only where the caller left the
+ * other choices at their defaults, and for genus >= 1 (tree qtri needs a
+ * cone tree with a root path to the cut). */
+static int uses_both_trees(const sq_param_options *o, int64_t genus)
 {
-    return genus >= 1 && o->fallback == SQ_FALLBACK_AUTO && o->guidance == SQ_GUIDE_AUTO &&
-           o->tree == SQ_TREE_SURFACE && o->interior == SQ_INTERIOR_AUTO && !o->allow_flips;
+    return genus >= 1 && o->tree == SQ_TREE_AUTO && o->guidance == SQ_GUIDE_AUTO && o->interior == SQ_INTERIOR_AUTO &&
+           !o->allow_flips;
 }
 
-/* The options of the fallback (SQ_FALLBACK_AUTO): the surface tree copied
- * into Q triangulated and the overlay (SQ_TREE_QTRI; for genus 1 with the
- * guided domain, seed 9.2 per piece), whose map the cells could not give:
- * cid/elephant and mpz/elk, whose surface trees Q's quad grid cannot
- * follow (docs/param.md). The Steiner budget of the cuts stays (an
- * attempt whose tree winds fails there, early); the overlay may cross
- * more: tree qtri's own budget (sq_param_crossing_budget) where
- * max_crossings is 0. */
-static sq_param_options fallback_options(const sq_mesh *m, const sq_param_options *o)
+/* The options of one kind of attempt: tree qtri (genus 1 with the guided
+ * domain, seed 9.2 per piece, where guidance is auto), or the surface
+ * tree. The Steiner budget of the cuts stays (an attempt whose tree winds
+ * fails there, early); tree qtri's overlay may cross more: its own budget
+ * (sq_param_crossing_budget) where max_crossings is 0. */
+static sq_param_options tree_options(const sq_mesh *m, const sq_param_options *o, int tree)
 {
     sq_param_options f = *o;
-    f.tree = SQ_TREE_QTRI;
-    if (sq_mesh_genus(m) == 1) f.guidance = SQ_GUIDE_ON;
+    f.tree = tree;
+    if (tree == SQ_TREE_QTRI && sq_mesh_genus(m) == 1 && f.guidance == SQ_GUIDE_AUTO) f.guidance = SQ_GUIDE_ON;
     return f;
 }
 
-/* The fallback's attempt at list position a (sq_param_build's order:
- * position 1, then first + 1 .. first + nfb - 1), or SQ_NONE: one of the
- * default choices'. */
-static uint32_t fallback_index(uint32_t a, uint32_t first, uint32_t nfb)
+/* The surface tree's attempt at list position a (build_attempts' order:
+ * positions 1 .. after, then after + nq .. on), or SQ_NONE: one of tree
+ * qtri's (positions 0 and after + 1 .. after + nq - 1). */
+static uint32_t surface_index(uint32_t a, uint32_t after, uint32_t nq)
 {
-    if (!nfb) return SQ_NONE;
-    if (a == 1) return 0;
-    return a > first && a < first + nfb ? a - first : SQ_NONE;
+    if (!nq) return a;
+    if (a == 0) return SQ_NONE;
+    if (a <= after) return a - 1;
+    return a < after + nq ? SQ_NONE : a - nq;
 }
 
 /* The attempts of sq_param_build on m (the input, or the input with
- * edges between cones split), with their fallback, in the order below;
+ * edges between cones split), of one kind or both, in the order below;
  * stats->cut_needs_split is set where any attempt's cut graph failed for
  * want of an edge split. */
 static sq_status build_attempts(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
@@ -249,57 +210,45 @@ static sq_status build_attempts(const sq_mesh *m, const int32_t *valence, const 
     const sq_param_options o = *opt;
     const uint32_t n = o.attempts ? o.attempts : 1;
     sq_status st;
-    /* SQ_TREE_ALTERNATE with guidance (genus >= 2, or genus 1 with
-     * SQ_GUIDE_ON): each seed twice, the surface tree, then Q's tree */
-    const int alternate = sq_param_uses_algorithm1(o.guidance, sq_mesh_genus(m)) && o.tree == SQ_TREE_ALTERNATE;
-    /* with the fallback, in this order: the default choices' first
-     * attempt, the fallback's first, the default choices' others up to
-     * SQ_FALLBACK_AFTER, the fallback's others (at most
-     * SQ_FALLBACK_ATTEMPTS in all, from the same seed), then the default
-     * choices' other attempts. Why: where the first two default attempts
-     * fail, the later ones rarely pass (with the fallback off: block at
-     * the 15th, fertility_tri at the 7th, femur at the 3rd; elephant at
-     * none of 16, 36 to 54 s spent), and the fallback's maps are far less
-     * distorted (mean conformal ratio 129 against 3.7e8 on block;
-     * docs/param.md). One ordered list on the threads: with two, the
-     * fallback's first attempt runs beside the default choices' first
-     * from the start, and the result is still the lowest that passes.
-     * The fallback's attempts are heavy (each may hold a gigabyte and use
-     * both threads): nothing starts beside one, so on elephant the
-     * default attempts 2 and 3 do not compete with the fallback's first,
-     * which passes. */
-    const int fb = uses_fallback(&o, sq_mesh_genus(m));
-    const uint32_t first = fb && n > SQ_FALLBACK_AFTER ? SQ_FALLBACK_AFTER : n;
-    const uint32_t nfb = fb ? (n < SQ_FALLBACK_ATTEMPTS ? n : SQ_FALLBACK_ATTEMPTS) : 0;
-    const uint32_t total = n + nfb;
+    /* SQ_TREE_AUTO with both trees, in this order: tree qtri's first
+     * attempt, the surface tree's first SQ_SURFACE_AFTER, tree qtri's
+     * others (at most SQ_QTRI_ATTEMPTS in all), the surface tree's others.
+     * Why: tree qtri's maps are as little distorted as the surface tree's
+     * or far less (helmet 29.5 against 419, sculpt 92 against 367,
+     * rocker_arm 735 against 2e8), and it passes first on every shared
+     * model of genus >= 1 (bench/bench_param_modes.sh); where its first
+     * fails, its others rarely pass, and the surface tree's attempts, light
+     * ones, may run two at a time. One ordered list on the threads: the
+     * result is the lowest that passes, whatever the threads. */
+    const int both = uses_both_trees(&o, sq_mesh_genus(m));
+    const uint32_t after = both && n > SQ_SURFACE_AFTER ? SQ_SURFACE_AFTER : n;
+    const uint32_t nq = both ? (n < SQ_QTRI_ATTEMPTS ? n : SQ_QTRI_ATTEMPTS) : 0;
+    const uint32_t total = n + nq;
     job *jobs = calloc(total, sizeof *jobs);
     if (!jobs) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (attempts)");
-    const sq_param_options f = fallback_options(m, &o);
-    /* list position a: the default choices' attempt d or the fallback's
-     * attempt k (fallback_index) */
-    for (uint32_t a = 0, d = 0; a < total; a++) {
+    const int one = o.tree == SQ_TREE_QTRI ? SQ_TREE_QTRI : SQ_TREE_SURFACE; /* the one kind without both */
+    const sq_param_options fq = tree_options(m, &o, SQ_TREE_QTRI), fs = tree_options(m, &o, both ? SQ_TREE_SURFACE : one);
+    uint32_t last_q = 0, last_s = 0;
+    for (uint32_t a = 0; a < total; a++) {
         job *J = &jobs[a];
-        const uint32_t k = fallback_index(a, first, nfb);
-        if (k == SQ_NONE) {
-            J->o = attempt_options(&o, d, alternate);
-            J->msg = d ? retry_message(alternate, d) : NULL;
-            d++;
+        const uint32_t d = surface_index(a, after, nq);
+        if (d != SQ_NONE) {
+            J->o = attempt_options(&fs, d);
+            J->heavy = fs.tree == SQ_TREE_QTRI;
+            J->msg = !d ? (nq ? "fallback: the surface tree replicated in Q's quads" : NULL)
+                        : "retry with another cut graph";
+            last_s = a;
         } else {
-            J->o = attempt_options(&f, k, 0);
+            const uint32_t k = a ? a - after : 0;
+            J->o = attempt_options(&fq, k);
             J->heavy = 1;
-            J->msg = k == 0 ? "fallback: the surface tree copied into Q triangulated, overlay"
-                            : retry_message(0, k);
+            J->msg = k ? "retry tree qtri with another cut graph" : NULL;
+            last_q = a;
         }
     }
     uint32_t threads = o.threads ? o.threads : 1, pick = 0;
     if (threads > total) threads = total;
-    /* a cells map of the default choices' first attempt (10^8 to 10^10
-     * mean conformal ratio on rocker_arm, sculpt, trim-star) yields to the
-     * fallback's first attempt where that passes within
-     * SQ_REPLACE_PER_FACE crossings per input face (rocker_arm 77, sculpt
-     * 32; trim-star's needs 264 per face and about 9 s: kept) */
-    const uint64_t replace_limit = nfb ? SQ_REPLACE_PER_FACE * (uint64_t)m->nf : 0;
-    st = run_jobs(m, valence, &o, jobs, total, threads, replace_limit, &pick, err);
+    st = run_jobs(m, valence, &o, jobs, total, threads, &pick, err);
     if (st == SQ_OK) {
         job *J = &jobs[pick];
         *out = J->out;
@@ -307,23 +256,16 @@ static sq_status build_attempts(const sq_mesh *m, const int32_t *valence, const 
         *stats = J->stats;
         stats->attempts = pick + 1;
         stats->seed_used = J->o.seed;
-        stats->fallback = J->heavy;
-        stats->replaced_cells = pick == 1 && jobs[0].st == SQ_OK;
+        stats->fallback = nq && !J->heavy;
         *err = J->err;
         st = J->st;
-        if (st == SQ_ERR_SOLVER && nfb) {
-            /* every attempt failed: why the last of each group did (the
-             * default choices' attempt first - 1 sits at position first) */
-            const int g1 = sq_mesh_genus(m) == 1;
+        if (st == SQ_ERR_SOLVER && nq) {
+            /* every attempt failed: why the last of each kind did */
             char msg[3 * sizeof err->msg];
-            int len = snprintf(msg, sizeof msg,
-                               "%s; the fallback (%sthe surface tree copied into Q triangulated, overlay; %u "
-                               "attempts) failed too: %s",
-                               jobs[first > 1 ? first : 0].err.msg, g1 ? "guided domain, " : "", nfb,
-                               jobs[first + nfb - 1].err.msg);
-            if (total > first + nfb && len > 0 && (size_t)len < sizeof msg)
-                snprintf(msg + len, sizeof msg - (size_t)len, "; then attempts %u to %u with the default choices: %s",
-                         first + nfb + 1, total, jobs[total - 1].err.msg);
+            snprintf(msg, sizeof msg,
+                     "%s (tree qtri, %u attempts); the fallback (the surface tree replicated in Q's quads, %u "
+                     "attempts) failed too: %s",
+                     jobs[last_q].err.msg, nq, n, jobs[last_s].err.msg);
             sq_error_set(err, SQ_ERR_SOLVER, "%s", msg);
         }
     }

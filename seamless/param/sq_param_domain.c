@@ -586,15 +586,14 @@ sq_status sq_param_build_domain(ctx *c, const int32_t *valence, sq_param_stats *
     progress(c, "omega", 0.2);
     st = SQ_ERR_SOLVER;
     if (c->step_vertex && c->opt->tree == SQ_TREE_QTRI) st = sq_param_qtri_tree(c);
-    else if (c->step_vertex && c->opt->tree != SQ_TREE_DOMAIN) st = sq_param_guided_tree(c);
+    else if (c->step_vertex) st = sq_param_guided_tree(c);
     if (st_out) st_out->surface_tree = st == SQ_OK;
-    /* the surface tree could not be copied: Q's own tree, unless the exact
-     * copy was asked for (SQ_TREE_PAIR_EXACT: the attempt fails) */
-    if (st == SQ_ERR_SOLVER &&
-        !(c->step_vertex && (c->opt->tree == SQ_TREE_PAIR_EXACT || c->opt->tree == SQ_TREE_QTRI)))
+    /* the surface tree could not be replicated in Q's quads: Q's own
+     * tree (tree qtri's attempt fails instead) */
+    if (st == SQ_ERR_SOLVER && !(c->step_vertex && c->opt->tree == SQ_TREE_QTRI))
         st = sq_cone_tree_shortest(&c->D->quads, SQ_NONE, c->T, err);
     if (st == SQ_OK && !c->qtri) st = sq_omega_build(c->D, c->T, c->O, err);
-    if (st == SQ_OK && c->s_tree_next && !c->tree_exact && !c->qtri) st = sq_param_guided_root(c);
+    if (st == SQ_OK && c->s_tree_next && !c->qtri) st = sq_param_guided_root(c);
     if (st == SQ_OK) st = stop_if_cancelled(c);
     if (st) goto done;
     double t3 = sq_now();

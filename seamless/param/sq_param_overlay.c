@@ -433,9 +433,7 @@ done:
  * `rectangles` is 1, in the rectangles of its chords: fewer edges for the
  * surface to cross where Omega is large against the surface (femur,
  * rocker_arm, elk with guidance), more where it is not (fandisk, eight,
- * cup, helmet), hence second (docs/param.md, step 7'). rectangles 2
- * (SQ_INTERIOR_OVERLAY_CHORDS): the rectangles first, the squares second
- * (elk's fallback: its squares always fail after seconds). */
+ * cup, helmet), hence second (docs/param.md, step 7'). */
 sq_status sq_param_overlay_map(ctx *c, const int32_t *valence, int rectangles, sq_param *P,
                                sq_param_stats *stats)
 {
@@ -450,14 +448,11 @@ sq_status sq_param_overlay_map(ctx *c, const int32_t *valence, int rectangles, s
     sq_status st = sq_param_omega_boundary(W, oseq) == SQ_NONE
                        ? sq_error_set(c->err, SQ_ERR_INTERNAL, "Omega's boundary loop has not %u edges", W->nbnd)
                        : surface_disk_build(c, oseq, &A);
-    /* the chords' cells only when the rectangles are tried */
-    if (st == SQ_OK && rectangles == 2) st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
-    if (st == SQ_OK) st = overlay_with(c, &A, oseq, rectangles == 2 ? &C : NULL, valence, P, stats);
+    if (st == SQ_OK) st = overlay_with(c, &A, oseq, NULL, valence, P, stats);
     if (st == SQ_ERR_SOLVER && rectangles) {
         sq_param_free(P);
-        if (rectangles == 1) st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
-        else st = SQ_OK;
-        if (st == SQ_OK) st = overlay_with(c, &A, oseq, rectangles == 2 ? NULL : &C, valence, P, stats);
+        st = sq_omega_cells_build(c->O, 0, NULL, &C, c->err);
+        if (st == SQ_OK) st = overlay_with(c, &A, oseq, &C, valence, P, stats);
     }
     sq_omega_cells_free(&C);
     surface_disk_free(&A);

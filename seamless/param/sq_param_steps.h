@@ -73,8 +73,6 @@ typedef struct ctx {
     uint32_t root_surface; /* the surface tree's root vertex on the cut    */
     uint32_t root_step;    /* the step whose cone (nearest the circle) Q's */
                            /* root path starts from (SQ_NONE: not guided)  */
-    int tree_exact;      /* Q's tree is the surface tree's exact copy    */
-                         /* (sq_guide_tree_pair; its root: root_surface) */
     uint32_t *q_branch;  /* Q->nv: seed 9.4 guided tree: the surface vertex */
                          /* where the surface tree branched for a regular  */
                          /* branch vertex of Q's tree; SQ_NONE elsewhere,  */
@@ -224,8 +222,8 @@ void sq_param_domain_replace(ctx *c, sq_domain *D);
 
 /* ---- the cone tree in Q (sq_param_tree.c) ------------------------------- */
 
-/* Seed 9.4, guided: the surface tree first (or both as one plane tree,
- * SQ_TREE_PAIR), Q's tree c->T following it; c->q_branch, c->s_tree_next.
+/* Seed 9.4, guided: the surface tree first, Q's tree c->T following it;
+ * c->q_branch, c->s_tree_next.
  * SQ_ERR_SOLVER where either side is blocked. */
 sq_status sq_param_guided_tree(ctx *c);
 /* After Omega (guided tree): the surface tree's root path to the side
@@ -309,8 +307,8 @@ sq_status sq_param_cells_map(ctx *c, const sq_param_before_cells *saved, uint32_
 
 /* Step 7': the cut surface on the disk once, then Omega triangulated in
  * its unit squares, and where that fails (over the budget, mostly) and
- * `rectangles` is 1, in the rectangles of its chords (2: the rectangles
- * first, the squares second). Fills P and stats; every triangle checked. */
+ * `rectangles` is 1, in the rectangles of its chords. Fills P and stats;
+ * every triangle checked. */
 sq_status sq_param_overlay_map(ctx *c, const int32_t *valence, int rectangles, sq_param *P,
                                sq_param_stats *stats);
 /* SQ_INTERIOR_AUTO after the cells passed: the overlay on the same cut,

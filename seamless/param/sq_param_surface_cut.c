@@ -215,7 +215,7 @@ static int given_path(ctx *c, uint32_t sector, uint32_t target, uint32_t **path,
 {
     sq_tsurf *S = &c->S;
     const uint32_t *nx = c->s_tree_next;
-    uint32_t a = S->vert[sector], first = c->tree_exact ? c->root_surface : c->step_vertex[0], nv = c->m->nv;
+    uint32_t a = S->vert[sector], first = c->step_vertex[0], nv = c->m->nv;
     if (a >= nv || target >= nv || S->v_ncut[target]) return 0;
     if (nx[a] == SQ_NONE && a != first) return 0; /* not on the surface tree */
     if (nx[target] == SQ_NONE && target != first) return 0;

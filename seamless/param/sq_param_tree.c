@@ -24,16 +24,6 @@ static void fill_root_cost(const ctx *c, const sq_guide_root *root, double *cost
         if (t > 0) cost[Q->he_vert[h]] = fabs((double)t - t_want);
 }
 
-static sq_status root_cost(void *user, const sq_guide_root *root, double *cost)
-{
-    fill_root_cost(user, root, cost, INFINITY);
-    return SQ_OK;
-}
-
-/* guided_tree's plane tree: Q refined at most TREE_REFINE times where its
- * grid has no room, the root path tried from at most ROOT_TRIES cones. */
-enum { TREE_REFINE = 2, ROOT_TRIES = 3 };
-
 /* seed 9.4: the root path leaves from the cone nearest the circle */
 static uint32_t root_step(const ctx *c)
 {
@@ -66,93 +56,21 @@ sq_status sq_param_guided_tree(ctx *c)
         st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
     if (st == SQ_OK) st = sq_param_step_q_vertices(c, qv);
     uint32_t rs = root_step(c);
-    /* SQ_TREE_PAIR: seed 9.4 on both disks at once, as one plane tree
-     * (sq_guide_tree_pair); where that fails, as SQ_TREE_SURFACE
-     * (SQ_TREE_PAIR_EXACT: the attempt fails) */
     for (uint32_t j = 0; qs && qf && j < n1; j++) qs[j] = SQ_NONE, qf[j] = 0;
-    sq_domain *saved = c->D;
-    const int pair = c->opt->tree == SQ_TREE_PAIR || c->opt->tree == SQ_TREE_PAIR_EXACT;
-    if (st == SQ_OK && pair) {
-        /* where Q's grid has no room for a path, the same at twice the
-         * resolution (up to TREE_REFINE times; Q's vertices keep their
-         * indices, so qv stays) */
-        sq_domain *cur = c->D;
-        for (uint32_t level = 0; st == SQ_OK && !c->tree_exact; level++) {
-            sq_guide_root pr = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
-            c->D = cur; /* root_cost reads the domain */
-            /* the root path from the cone nearest the circle, else from the
-             * next nearest (a cone in a pocket of the cut can be reached
-             * by no other path) */
-            uint8_t *tried = calloc(n1, 1);
-            st = !tried ? sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory") : n ? SQ_ERR_SOLVER : SQ_OK;
-            for (uint32_t k = 0; st == SQ_ERR_SOLVER && k < ROOT_TRIES && k < n; k++) {
-                uint32_t r = SQ_NONE;
-                double far = -1;
-                for (uint32_t j = 0; j < n; j++) {
-                    double d = hypot(c->step_xy[2 * j], c->step_xy[2 * j + 1]);
-                    if (!tried[j] && d > far) far = d, r = j;
-                }
-                tried[r] = 1;
-                pr = (sq_guide_root){r, SQ_NONE, SQ_NONE, SQ_NONE};
-                st = sq_guide_tree_pair(&cur->quads, qv, c->m, &c->G, c->step_vertex, n, r, root_cost, c,
-                                        c->s_tree_next, sv, qa, &pr, c->T, c->err);
-                if (st == SQ_OK) rs = r;
-            }
-            free(tried);
-            if (st == SQ_OK) {
-                c->tree_exact = 1;
-                c->root_surface = pr.vertex;
-                break;
-            }
-            if (st != SQ_ERR_SOLVER || level == TREE_REFINE) break;
-            st = SQ_OK;
-            sq_domain *next = calloc(1, sizeof *next);
-            if (!next) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-            if (st == SQ_OK) st = sq_domain_refine2(cur, next, c->err);
-            if (cur != saved) {
-                sq_domain_free(cur);
-                free(cur);
-            }
-            cur = next;
-            if (st && next) {
-                sq_domain_free(next);
-                free(next);
-                cur = saved;
-            }
-        }
-        c->D = saved;
-        if (c->tree_exact && cur != saved) {
-            sq_param_domain_replace(c, cur);
-            Q = &c->D->quads;
-            uint32_t *b = realloc(c->q_branch, ((size_t)Q->nv + 1) * sizeof *b);
-            if (!b) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
-            else c->q_branch = b;
-        } else if (cur != saved) {
-            sq_domain_free(cur);
-            free(cur);
-        }
-        if (st == SQ_ERR_SOLVER && c->opt->tree == SQ_TREE_PAIR_EXACT) {
-            char why[sizeof c->err->msg];
-            memcpy(why, c->err->msg, sizeof why);
-            st = sq_error_set(c->err, SQ_ERR_SOLVER, "the exact plane tree (tree pair-exact) failed: %s", why);
-        } else if (st == SQ_ERR_SOLVER) {
-            st = SQ_OK;
-        }
-    }
-    /* else the surface tree first, Q's following it near the same places */
-    if (st == SQ_OK && !c->tree_exact)
+    /* the surface tree first, Q's following it near the same places */
+    if (st == SQ_OK)
         st = sq_guide_surface_tree(c->m, &c->G, n, c->step_vertex, att, frac, side, sv, c->s_tree_next, c->err);
     /* the surface root path as the seed draws it (to the nearest side),
      * not attached: it tells Q where its root should be */
     sq_guide_root root = {rs, SQ_NONE, SQ_NONE, SQ_NONE};
-    if (st == SQ_OK && !c->tree_exact)
+    if (st == SQ_OK)
         st = sq_guide_surface_root(c->m, &c->G, n, c->step_vertex, c->s_tree_next, NULL, &root, c->err);
-    if (st == SQ_OK && !c->tree_exact && root.side != SQ_NONE) {
+    if (st == SQ_OK && root.side != SQ_NONE) {
         rcost = malloc(((size_t)Q->nv + 1) * sizeof *rcost);
         if (!rcost) st = sq_error_set(c->err, SQ_ERR_NOMEM, "out of memory");
         else fill_root_cost(c, &root, rcost, 1e6);
     }
-    if (st == SQ_OK && !c->tree_exact)
+    if (st == SQ_OK)
         st = sq_cone_tree_guided(Q, n, qv, att, frac, side, rs, rcost, qa, qs, qf, c->T, c->err);
     if (st == SQ_OK) c->root_step = rs;
     if (st == SQ_OK) {

@@ -21,8 +21,8 @@
  * arrived in, and runs through faces to its cone (sq_tsurf_route_faces:
  * every crossed edge is split at its midpoint, so a path never touches an
  * earlier one and always exists: a tree does not separate a disk). Unlike
- * a copy in Q's quad grid (sq_guide_tree_pair), it cannot fail for lack of
- * room, and it refines Q only along the paths.
+ * a copy in Q's quad grid, it cannot fail for lack of room, and it refines
+ * Q only along the paths.
  *
  * The library never prints or exits. */
 #ifndef SQ_QTRI_H

@@ -54,39 +54,6 @@ static void run_genus(uint32_t genus, uint32_t cases)
                   worst);
 }
 
-/* sq_domain_refine2 (the 2 x 2 refinement --tree pair uses where Q has no
- * room), genus 2 to 4: the refined domain passes sq_domain_verify for the
- * same cones; four times the quads, twice the boundary and the side
- * lengths, the same corners, and every old vertex keeps its faces (the
- * cones stay cones). */
-static void test_refine2(void **state)
-{
-    (void)state;
-    int32_t v[4096];
-    for (uint32_t genus = 2; genus <= 4; genus++)
-        for (uint32_t c = 0; c < 2; c++) {
-            uint32_t n = random_cones(genus, v, 4096);
-            sq_domain D, R;
-            sq_error err;
-            if (sq_domain_build(genus, v, n, NULL, &D, &err)) fail_msg("genus %u: %s", genus, err.msg);
-            sq_domain_init(&R);
-            if (sq_domain_refine2(&D, &R, &err)) fail_msg("genus %u: refine2: %s", genus, err.msg);
-            if (sq_domain_verify(&R, v, n, &err)) fail_msg("genus %u case %u: refined: %s", genus, c, err.msg);
-            const sq_metapolygon *Q = &D.quads, *Q2 = &R.quads;
-            assert_int_equal(Q2->nf, 4 * Q->nf);
-            assert_int_equal(Q2->nbnd, 2 * Q->nbnd);
-            assert_int_equal(R.k, D.k);
-            for (uint32_t i = 0; i < D.k; i++) {
-                assert_int_equal(R.side_len[i], 2 * D.side_len[i]);
-                assert_int_equal(R.corner_vert[i], D.corner_vert[i]);
-            }
-            for (uint32_t x = 0; x < Q->nv; x++) assert_int_equal(Q2->v_nface[x], Q->v_nface[x]);
-            for (uint32_t x = Q->nv; x < Q2->nv; x++) assert_true(Q2->v_nface[x] == 2 || Q2->v_nface[x] == 4);
-            sq_domain_free(&R);
-            sq_domain_free(&D);
-        }
-}
-
 static void test_genus_2_to_10(void **state)
 {
     (void)state;
@@ -217,7 +184,6 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_refine2),
         cmocka_unit_test(test_shared_cone_sets),
         cmocka_unit_test(test_random_patterns),
         cmocka_unit_test(test_genus_2_to_10),

@@ -114,12 +114,12 @@ static void test_eight_passes(void **state)
     assert_memory_equal(P.pos, M.m.pos, 3 * (size_t)M.m.nv * sizeof(double));
     assert_int_equal(st.genus, 2);
     assert_int_equal(st.ncones, 8);
-    /* the default (SQ_INTERIOR_AUTO): the cells pass, then the overlay on
-     * the same cuts passes too and its map is kept */
-    assert_int_equal(st.overlay, 1);
+    /* the default (SQ_TREE_AUTO): tree qtri's first attempt passes, with
+     * the overlay */
+    assert_true(st.attempts == 1 && st.tree_qtri && !st.fallback && st.overlay == 1);
     assert_true(st.chords == 0 && st.cells == 0 && st.rounds == 0);
     assert_referee_passes(&M, &P, "eight");
-    /* the cells alone: a map too, far more distorted */
+    /* the surface tree with the cells alone: a map too, far more distorted */
     sq_param Pc;
     sq_param_init(&Pc);
     sq_param_stats sc;
@@ -134,15 +134,25 @@ static void test_eight_passes(void **state)
     assert_true(st.conformal_mean > 1 && 100 * st.conformal_mean < sc.conformal_mean);
     printf("  eight: overlay %u faces, conformal mean %.3g; cells %u faces, %.3g\n", st.faces_out,
            st.conformal_mean, sc.faces_out, sc.conformal_mean);
-    /* the overlay alone: the same map as the default's */
+    /* tree qtri alone: the same map as the default's */
     sq_param Po;
     sq_param_init(&Po);
     sq_param_stats so;
-    opt.interior = SQ_INTERIOR_OVERLAY;
+    opt.interior = SQ_INTERIOR_AUTO, opt.tree = SQ_TREE_QTRI;
+    s = sq_param_build(&M.m, M.val, &opt, &Po, &so, &err);
+    if (s) fail_msg("eight, tree qtri: %s", err.msg);
+    assert_true(so.overlay == 1 && so.tree_qtri && !so.fallback && Po.nf == P.nf && Po.nv == P.nv);
+    assert_memory_equal(Po.uv, P.uv, 2 * (size_t)P.nuv * sizeof(double));
+    sq_param_free(&Po);
+    /* the surface tree with the overlay: a map, less distorted than the
+     * cells' */
+    sq_param_init(&Po);
+    opt.interior = SQ_INTERIOR_OVERLAY, opt.tree = SQ_TREE_AUTO;
     s = sq_param_build(&M.m, M.val, &opt, &Po, &so, &err);
     if (s) fail_msg("eight, overlay: %s", err.msg);
-    assert_true(so.overlay == 1 && Po.nf == P.nf && Po.nv == P.nv);
-    assert_memory_equal(Po.uv, P.uv, 2 * (size_t)P.nuv * sizeof(double));
+    assert_true(so.overlay == 1 && !so.tree_qtri && so.surface_tree);
+    assert_true(100 * so.conformal_mean < sc.conformal_mean);
+    assert_referee_passes(&M, &Po, "eight (the surface tree, overlay)");
     sq_param_free(&Po);
     sq_param_free(&Pc);
     sq_param_free(&P);
@@ -189,15 +199,6 @@ static void test_cup_guided(void **state)
     if (s) fail_msg("cup seeds 8-9: %s", err.msg);
     assert_true(st.attempts == 2 && st.seed_used == 9 && st.surface_tree);
     assert_int_equal(sq_param_verify(&P, SQ_PARAM_VERIFY_INTEGER, &err), SQ_OK);
-    sq_param_free(&P);
-    /* the trees alternating: seed 12 with the surface tree fails, seed 12
-     * with Q's own tree passes (attempt 2) */
-    opt.tree = SQ_TREE_ALTERNATE;
-    opt.seed = 12;
-    s = sq_param_build(&M.m, M.val, &opt, &P, &st, &err);
-    if (s) fail_msg("cup alternate: %s", err.msg);
-    assert_true(st.attempts == 2 && st.seed_used == 12 && !st.surface_tree);
-    assert_referee_passes(&M, &P, "cup");
     sq_param_free(&P);
     unload(&M);
 }
@@ -272,12 +273,13 @@ static void build_1_and_2_threads(const model *M, sq_param_options *opt, const c
 }
 
 /* The attempts as one ordered list (sq_param_attempts.c): mpz/eight with
- * a Steiner budget of 50 fails its first default attempt and passes at
- * the fallback's first (attempt 2, seed 1), which with two threads runs
- * beside it; with 1 and 2 threads the same map to the bit. With budgets
- * of 1 Steiner vertex and 1 crossing every attempt fails (default,
- * fallback, default, fallback twice, default): the same message with 1
- * and 2 threads, naming each group. */
+ * an overlay budget of 1 crossing fails tree qtri's first attempt and
+ * passes at the surface tree's first (attempt 2, seed 1: the fallback,
+ * the cells' map), which with two threads runs once qtri's has failed;
+ * with 1 and 2 threads the same map to the bit. With budgets of 1 Steiner
+ * vertex and 1 crossing every attempt fails (qtri, surface twice, qtri
+ * twice, surface): the same message with 1 and 2 threads, naming each
+ * kind. */
 static void test_fallback_threads(void **state)
 {
     (void)state;
@@ -285,13 +287,13 @@ static void test_fallback_threads(void **state)
     load(&M, "mpz/eight");
     sq_param_options opt;
     sq_param_options_default(&opt);
-    opt.attempts = 16, opt.max_steiner = 50;
+    opt.attempts = 16, opt.max_crossings = 1;
     sq_param P1, P;
     sq_param_stats s1, st;
     sq_error err = {0};
     build_1_and_2_threads(&M, &opt, "eight", &P1, &s1, &P, &st);
-    assert_true(s1.attempts == 2 && s1.seed_used == 1 && s1.fallback && s1.tree_qtri);
-    assert_true(st.fallback && st.tree_qtri);
+    assert_true(s1.attempts == 2 && s1.seed_used == 1 && s1.fallback && !s1.tree_qtri && !s1.overlay);
+    assert_true(st.fallback && !st.tree_qtri);
     assert_referee_passes(&M, &P, "eight (fallback, 2 threads)");
     sq_param_free(&P);
     sq_param_free(&P1);
@@ -303,9 +305,8 @@ static void test_fallback_threads(void **state)
     opt.threads = 2;
     assert_int_equal(sq_param_build(&M.m, M.val, &opt, &P, &st, &err), SQ_ERR_SOLVER);
     assert_string_equal(err.msg, msg1);
-    assert_non_null(strstr(err.msg, "the fallback ("));
+    assert_non_null(strstr(err.msg, "(tree qtri, 3 attempts); the fallback ("));
     assert_non_null(strstr(err.msg, "3 attempts) failed too"));
-    assert_non_null(strstr(err.msg, "then attempts 6 to 6 with the default choices"));
     assert_true(st.attempts == 6 && s1.attempts == 6);
     assert_null(P.pos);
     unload(&M);
@@ -597,39 +598,6 @@ static void test_needles(void **state)
     sq_param_free(&P);
     unload(&N);
     free(S.pos), free(S.face_off), free(S.face_idx), free(touched);
-    unload(&M);
-}
-
-/* A cells map of the first default attempt yields to the fallback's first
- * (sq_param_attempts.c, replaces_cells): mpz/genus3 passes at attempt 1
- * with the cells' map (mean conformal ratio 5.2e10) and at the fallback's
- * first within 50 crossings per input face (10): that map is the result,
- * the same with 1 and 2 threads, and the referee passes it; without the
- * fallback, the cells' map. */
-static void test_replaces_cells(void **state)
-{
-    (void)state;
-    model M;
-    load(&M, "mpz/genus3");
-    sq_param_options opt;
-    sq_param_options_default(&opt);
-    sq_param P1, P;
-    sq_param_stats s1, st;
-    sq_error err = {0};
-    build_1_and_2_threads(&M, &opt, "genus3", &P1, &s1, &P, &st);
-    assert_true(s1.attempts == 2 && s1.fallback && s1.replaced_cells && s1.tree_qtri && s1.overlay);
-    assert_true(s1.crossings <= (uint64_t)SQ_REPLACE_PER_FACE * M.m.nf);
-    assert_true(s1.conformal_mean < 1000);
-    assert_true(st.replaced_cells);
-    assert_referee_passes(&M, &P, "genus3 (the fallback's map replacing the cells')");
-    sq_param_free(&P);
-    sq_param_free(&P1);
-    opt.fallback = SQ_FALLBACK_OFF;
-    sq_param_init(&P);
-    if (sq_param_build(&M.m, M.val, &opt, &P, &st, &err)) fail_msg("genus3, no fallback: %s", err.msg);
-    assert_true(st.attempts == 1 && !st.fallback && !st.replaced_cells && !st.overlay);
-    assert_true(st.conformal_mean > 1e6);
-    sq_param_free(&P);
     unload(&M);
 }
 
@@ -944,7 +912,6 @@ int main(void)
         cmocka_unit_test(test_threads),
         cmocka_unit_test(test_fallback_threads),
         cmocka_unit_test(test_split_walls),
-        cmocka_unit_test(test_replaces_cells),
         cmocka_unit_test(test_domain_variants),
         cmocka_unit_test(test_all_models_compatible),
         cmocka_unit_test(test_refine),

@@ -112,7 +112,7 @@ static void check_model(const char *rel, int want_overlay)
     sq_param_options opt;
     sq_param_options_default(&opt);
     opt.attempts = 4;
-    opt.fallback = SQ_FALLBACK_OFF; /* genus3: the cells' map (else the fallback's replaces it) */
+    opt.tree = SQ_TREE_SURFACE; /* genus3: the cells' map (tree qtri's is an overlay) */
     opt.simplify = SQ_SIMPLIFY_OFF;
     if (sq_param_build(&m, val, &opt, &A, &sa, &err)) fail_msg("%s, unsimplified: %s", rel, err.msg);
     opt.simplify = SQ_SIMPLIFY_ON;
