@@ -133,7 +133,18 @@ static sq_status write_sides(const sq_domain *D, const char *path, sq_error *err
     return sq_atomic_commit(&af, err);
 }
 
-static sq_status write_quads_obj(const sq_metapolygon *Q, const double *xy, const char *path,
+/* Genus 0: a point of the sphere's planar drawing (sq_disk_layout_sphere,
+ * inside the unit circle) lifted onto the unit sphere by the inverse
+ * stereographic projection, scaled so that the outer quad becomes a small
+ * cap, mirrored so that the faces face outwards. */
+static void lift_to_sphere(double x, double y, double *p)
+{
+    const double X = -3.0 * x, Y = 3.0 * y, d = 1 + X * X + Y * Y;
+    p[0] = 2 * X / d, p[1] = 2 * Y / d, p[2] = (X * X + Y * Y - 1) / d;
+}
+
+/* Q as OBJ: flat (x, y, 0), or on the sphere for genus 0 (lift). */
+static sq_status write_quads_obj(const sq_metapolygon *Q, const double *xy, int lift, const char *path,
                                  sq_error *err)
 {
     double *pos = malloc(3 * (size_t)Q->nv * sizeof *pos);
@@ -148,6 +159,7 @@ static sq_status write_quads_obj(const sq_metapolygon *Q, const double *xy, cons
         pos[3 * v] = xy[2 * v];
         pos[3 * v + 1] = xy[2 * v + 1];
         pos[3 * v + 2] = 0;
+        if (lift) lift_to_sphere(xy[2 * v], xy[2 * v + 1], pos + 3 * v);
     }
     uint32_t c = 0;
     for (uint32_t f = 0; f < Q->nf; f++) {
@@ -320,7 +332,13 @@ int sq_cmd_domain(int argc, char **argv)
         goto fail;
     }
     double t2 = sq_now();
-    if (sq_disk_layout_tutte(&D.quads, D.quads.v_he[D.corner_vert[0]], xy, &err)) goto fail;
+    /* genus 0: Q is a sphere cut along one edge, whose disk layout would be
+     * one segment: a planar drawing of the sphere instead, lifted onto it
+     * in the OBJ files */
+    const int sphere = D.quads.nbnd <= 2;
+    if (sphere ? sq_disk_layout_sphere(&D.quads, sq_disk_layout_sphere_outer(&D.quads), xy, &err)
+               : sq_disk_layout_tutte(&D.quads, D.quads.v_he[D.corner_vert[0]], xy, &err))
+        goto fail;
     paths[0] = join(prefix, ".quad.obj");
     paths[1] = join(prefix, ".closed.obj");
     paths[2] = join(prefix, ".sides.txt");
@@ -330,11 +348,13 @@ int sq_cmd_domain(int argc, char **argv)
         sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
         goto fail;
     }
-    if (write_quads_obj(&D.quads, xy, paths[0], &err)) goto fail;
+    if (write_quads_obj(&D.quads, xy, sphere, paths[0], &err)) goto fail;
     written = 1;
     {
         sq_soup closed;
         if (sq_domain_glue(&D, xy, &closed, NULL, &err)) goto fail;
+        for (uint32_t v = 0; sphere && v < closed.nv; v++)
+            lift_to_sphere(closed.pos[3 * v], closed.pos[3 * v + 1], closed.pos + 3 * v);
         sq_status st = sq_write_obj(paths[1], closed.nv, closed.pos, closed.nf, closed.face_off,
                                     closed.face_idx, 0, NULL, NULL, &err);
         sq_soup_free(&closed);

@@ -60,6 +60,24 @@ assert j["quads"] == j["quads_before_padding"] + j["quads_added_by_padding"]
 PY
 done <"$shared/data/MANIFEST.tsv"
 
+# --- genus 0 (the bundled cube): Q is a sphere cut along one edge; its
+# picture is a planar drawing of the sphere (one quad outside), not every
+# quad on one segment, and the closed mesh lies on a sphere with no quad
+# folded (the referee against the cube itself) -------------------------------
+"$bin" domain "$root/examples/cube.obj" --cones "$root/examples/cube.cones" -o "$tmp/cube" >/dev/null \
+  && python3 "$referee" "$root/examples/cube.obj" "$tmp/cube.closed.obj" >"$tmp/cube.ref" 2>&1 \
+  && grep -q "folded=0" "$tmp/cube.ref" \
+  && python3 - "$tmp/cube.svg" <<'PY' && ok || bad "genus-0 pictures: $(tail -1 "$tmp/cube.ref")"
+import re, sys
+s = open(sys.argv[1]).read()
+right = [re.findall(r"([\d.]+),([\d.]+)", p) for p in re.findall(r'<polygon points="([^"]+)"', s)][2:]
+assert len(right) == 23, len(right)  # 24 quads, one of them the outer face
+for q in right:  # every quad has area
+    pts = [(float(x), float(y)) for x, y in q]
+    area = sum(pts[i][0] * pts[(i + 1) % 4][1] - pts[(i + 1) % 4][0] * pts[i][1] for i in range(4)) / 2
+    assert abs(area) > 1.0, q
+PY
+
 # --- combinatorial mode and errors -----------------------------------------
 "$bin" domain --genus 3 --valences 3,3,3,3,3,3,5,7,22 -o "$tmp/h" >/dev/null \
   && python3 "$referee" --topology-only --genus 3 --valences 3,3,3,3,3,3,5,7,22 "$tmp/h.closed.obj" >/dev/null \

@@ -26,6 +26,18 @@ sq_status sq_disk_layout_tutte(const sq_metapolygon *P, uint32_t start, double *
  * xy as the caller set them (any convex placement gives an embedding). */
 sq_status sq_disk_layout_tutte_fixed(const sq_metapolygon *P, double *xy, sq_error *err);
 
+/* A sphere cut along one edge (a disk whose boundary loop has at most two
+ * halfedges, as the genus-0 domain is; its Tutte layout would put every
+ * vertex on one segment): face `outer`'s vertices go to the unit circle,
+ * clockwise and evenly spaced, every other vertex to the average of its
+ * neighbours on the sphere (the cut edge counted as one edge). Face
+ * `outer` is then the unbounded face of a planar drawing of the sphere. */
+sq_status sq_disk_layout_sphere(const sq_metapolygon *P, uint32_t outer, double *xy, sq_error *err);
+
+/* The outer face the pictures of a genus-0 domain use: the last face (a
+ * padding quad, away from the cones). */
+static inline uint32_t sq_disk_layout_sphere_outer(const sq_metapolygon *P) { return P->nf ? P->nf - 1 : 0; }
+
 #ifdef __cplusplus
 }
 #endif

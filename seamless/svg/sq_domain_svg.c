@@ -78,8 +78,13 @@ sq_status sq_domain_write_svg(const sq_domain *D, const double *qxy_given, const
         return sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
     }
     sq_status st = sq_disk_layout_tutte(P, SQ_NONE, pxy, err);
+    /* genus 0: Q is the sphere cut along one edge, drawn as a planar map
+     * of the sphere with one quad as the unbounded face (not drawn) */
+    const int sphere = Q->nbnd <= 2;
+    const uint32_t outer = sphere ? sq_disk_layout_sphere_outer(Q) : SQ_NONE;
     if (st == SQ_OK && qxy_own)
-        st = sq_disk_layout_tutte(Q, Q->v_he[D->corner_vert[0]], qxy_own, err);
+        st = sphere ? sq_disk_layout_sphere(Q, outer, qxy_own, err)
+                    : sq_disk_layout_tutte(Q, Q->v_he[D->corner_vert[0]], qxy_own, err);
     sq_atomic_file af;
     if (st == SQ_OK) st = sq_atomic_open(&af, path, err);
     if (st) {
@@ -96,9 +101,10 @@ sq_status sq_domain_write_svg(const sq_domain *D, const double *qxy_given, const
                "corners</text>\n",
             MARGIN, P->nf, D->k);
     fprintf(f, "<text x=\"%.0f\" y=\"22\" font-size=\"15\">padded disk Q: %llu + %llu "
-               "quads, genus %u</text>\n",
+               "quads, genus %u%s</text>\n",
             PANEL + 3 * MARGIN, (unsigned long long)D->quads_unpadded,
-            (unsigned long long)D->quads_added, D->genus);
+            (unsigned long long)D->quads_added, D->genus,
+            sphere ? " (a sphere cut along one edge: one quad is the outer face)" : "");
 
     /* left panel: P */
     fprintf(f, "<g>\n");
@@ -113,6 +119,7 @@ sq_status sq_domain_write_svg(const sq_domain *D, const double *qxy_given, const
     double width = Q->nf > 20000 ? 0.05 : Q->nf > 2000 ? 0.15 : 0.4;
     fprintf(f, "<g>\n");
     for (uint32_t face = 0; face < Q->nf; face++) {
+        if (face == outer) continue;
         /* faces: the first piece's subdivision (by valence), the other
          * pieces' subdivision (genus 0 and 1, light blue), padding (green) */
         const char *fill = face < D->nf_unpadded ? valence_fill(P->f_valence[D->f_meta_face[face]])
