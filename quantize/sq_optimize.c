@@ -634,7 +634,10 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         for (uint32_t f = 0; f < m->nf; f++) {
             double a6[6];
             face_uv(m, uv, f, a6);
-            if (X.F[f].area == 0 || sq_sd_psi(&X.F[f], a6) <= hold_above) continue;
+            const double psi = sq_sd_psi(&X.F[f], a6);
+            /* an infinite energy (a triangle flat in 3D or in doubles) is
+             * held even where nothing finite is (hold_above infinite) */
+            if (X.F[f].area == 0 || (isfinite(psi) && psi <= hold_above)) continue;
             X.F[f].area = 0;
             rep->held_triangles++;
             hold_face(&X, f);
