@@ -53,7 +53,6 @@ typedef struct ov {
     sq_error err;
     uint32_t stop_g; /* over the budget after face stop_g (else SQ_NONE)  */
     const _Atomic int *cancel; /* set: stop (NULL: never)                 */
-    const _Atomic uint64_t *limit; /* a budget lowered later (0: none)    */
     uint32_t *sa_stamp; /* na: B face + 1 whose edges sa_side holds for  */
     int8_t *sa_side;    /* 3 na: A vertex against them (side_code). An A */
                         /* vertex lies in about six of the A faces a B   */
@@ -385,26 +384,15 @@ static uint32_t bad_faces(const double *xy, const sq_overlay_mesh *M)
     return bad;
 }
 
-/* The crossing budget: max_crossings, or *limit where that is lower
- * (another thread may lower it while the walk runs; 0: no budget) */
-static uint64_t budget_now(uint64_t max_crossings, const _Atomic uint64_t *limit)
-{
-    uint64_t L = limit ? atomic_load(limit) : 0;
-    return L && (!max_crossings || L < max_crossings) ? L : max_crossings;
-}
-
 #define SPLIT_STRIDE 16u /* the sample: every 16th of B's faces (balanced_split) */
 
-/* The sample's expectation against the budget it answers to (more than a
- * quarter above it fails): a lowered limit always, the budget as it
- * stands (max_crossings, or limit where lower) where max_expected is not
- * 0; and against max_expected (0: none). Checked before the walk and, for
- * the limit, again after it, so that when limit is lowered does not
- * change the outcome. */
+/* The sample's expectation against the budget (more than a quarter above
+ * it fails) where max_expected is not 0, and against max_expected itself
+ * (UINT64_MAX: the budget alone). */
 static sq_status check_expected(uint64_t expected, uint32_t sample_nx, uint64_t max_crossings,
-                                uint64_t max_expected, const _Atomic uint64_t *limit, sq_error *err)
+                                uint64_t max_expected, sq_error *err)
 {
-    const uint64_t L = limit ? atomic_load(limit) : 0, b = max_expected ? budget_now(max_crossings, limit) : L;
+    const uint64_t b = max_expected ? max_crossings : 0;
     if (b && expected > b + b / 4)
         return sq_error_set(err, SQ_ERR_SOLVER,
                             "overlay: more than %llu crossings of surface and domain edges (about %llu expected: "
@@ -446,7 +434,6 @@ static void walk_range(ov *c)
             st = sq_error_set(err, SQ_ERR_SOLVER, "overlay: cancelled");
             goto done;
         }
-        if (g == c->g0 || g % 64 == 0) c->max_crossings = budget_now(c->max_crossings, c->limit);
         const uint32_t *t = B->tri + 3 * (size_t)g;
         uint32_t b = SQ_NONE;
         for (int k = 0; k < 3 && b == SQ_NONE; k++)
@@ -534,7 +521,7 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
                            const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                            sq_overlay *out, sq_error *err)
 {
-    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 0, 1, NULL, NULL, out, err);
+    return sq_overlay_build_threads(nbnd, na, nv, xy, A, B, max_crossings, 0, 1, NULL, out, err);
 }
 
 /* Where to split B's faces between the two ranges so that both walks take
@@ -555,7 +542,7 @@ static uint32_t balanced_split(const ov *proto, uint64_t cap, uint32_t *sample_n
     sq_overlay T;
     sq_overlay_init(&T);
     ov d = *proto;
-    d.X = &T, d.g0 = 0, d.g1 = nf, d.stride = SPLIT_STRIDE, d.max_crossings = cap, d.limit = NULL;
+    d.X = &T, d.g0 = 0, d.g1 = nf, d.stride = SPLIT_STRIDE, d.max_crossings = cap;
     d.loc = malloc((size_t)d.nv * sizeof *d.loc);
     d.bary = malloc(3 * (size_t)d.nv * sizeof *d.bary);
     d.work = calloc((size_t)ns + 1, sizeof *d.work);
@@ -604,10 +591,10 @@ static sq_status append_range1(sq_overlay *out, const sq_overlay *X1, const uint
  * where the expectation is checked against it (check_expected), the
  * sample's count beyond which the check refuses anyway. Not max_expected
  * itself: callers rank the expectations above it (the domain variants). */
-static uint64_t sample_cap(uint64_t max_crossings, uint64_t max_expected, const _Atomic uint64_t *limit)
+static uint64_t sample_cap(uint64_t max_crossings, uint64_t max_expected)
 {
-    uint64_t cap = budget_now(max_crossings, limit);
-    const uint64_t L = limit ? atomic_load(limit) : 0, b = max_expected ? cap : L;
+    uint64_t cap = max_crossings;
+    const uint64_t b = max_expected ? cap : 0;
     const uint64_t e = b ? (b + b / 4) / (SPLIT_STRIDE / 2) + 1 : 0;
     if (e && (!cap || e < cap)) cap = e;
     return cap;
@@ -627,7 +614,7 @@ static uint64_t sample_cap(uint64_t max_crossings, uint64_t max_expected, const 
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                                    uint64_t max_expected, uint32_t threads, const _Atomic int *cancel,
-                                   const _Atomic uint64_t *limit, sq_overlay *out, sq_error *err)
+                                   sq_overlay *out, sq_error *err)
 {
     sq_overlay_init(out);
     if (!xy || !A || !B || nbnd < 3 || na < nbnd || nv < na || !A->nf || !B->nf)
@@ -647,7 +634,7 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
         c[r].rng = 0x2545F4914F6CDD1Dull;
         c[r].max_crossings = max_crossings;
         c[r].stop_g = SQ_NONE;
-        c[r].cancel = cancel, c[r].limit = limit;
+        c[r].cancel = cancel;
         c[r].stride = 1;
     }
     /* the sample (with one thread too: the same result, the same
@@ -655,7 +642,7 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
     uint32_t sample_nx = 0;
     int over = 0;
     c[0].g0 = 0,
-    c[0].g1 = c[1].g0 = B->nf >= 2 * SPLIT_STRIDE ? balanced_split(&c[0], sample_cap(max_crossings, max_expected, limit),
+    c[0].g1 = c[1].g0 = B->nf >= 2 * SPLIT_STRIDE ? balanced_split(&c[0], sample_cap(max_crossings, max_expected),
                                                                     &sample_nx, &over)
                                                    : B->nf / 2;
     c[1].g1 = B->nf;
@@ -666,9 +653,9 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
                             "overlay: more than %llu crossings of surface and domain edges expected (at least "
                             "%llu: a sample of every %u-th domain triangle alone made %u before it stopped): the "
                             "two disk maps differ too much",
-                            (unsigned long long)budget_now(max_crossings, limit), (unsigned long long)expected,
+                            (unsigned long long)max_crossings, (unsigned long long)expected,
                             SPLIT_STRIDE, sample_nx);
-    sq_status st = check_expected(expected, sample_nx, max_crossings, max_expected, limit, err);
+    sq_status st = check_expected(expected, sample_nx, max_crossings, max_expected, err);
     if (st) return st;
     c[0].X = out, c[1].X = &X1;
     uint32_t *map = NULL;
@@ -697,11 +684,7 @@ sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, cons
         }
         if (c[r].stop_g != SQ_NONE) break;
     }
-    /* range 1's crossings: range 0's id, or the next; the budget as it is
-     * now (limit may have been lowered after range 0's last look) */
-    max_crossings = budget_now(max_crossings, limit);
-    st = check_expected(expected, sample_nx, max_crossings, 0, limit, err);
-    if (st) goto done;
+    /* range 1's crossings: range 0's id, or the next */
     uint32_t n0 = out->nx, stop_g = c[0].stop_g;
     if (stop_g == SQ_NONE && max_crossings && n0 > max_crossings) stop_g = c[0].g1 - 1;
     map = malloc(((size_t)X1.nx + 1) * sizeof *map);

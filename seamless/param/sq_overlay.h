@@ -82,25 +82,19 @@ sq_status sq_overlay_build(uint32_t nbnd, uint32_t na, uint32_t nv, const double
  * alone (the second counting the crossings it shares with the first) and
  * to the whole. cancel (may be NULL): once it is set (by another thread),
  * the walk stops within 64 of B's faces with SQ_ERR_SOLVER "cancelled".
- * limit (may be NULL): a crossing budget another thread may lower while
- * the walk runs (0: none); where it is below max_crossings it takes its
- * place (read every 64 of B's faces and once more at the end).
  * Before the walk (with one thread or two alike), every 16th of B's faces
  * is walked alone, a sample of the work: out->expected = 8 times the
  * sample's crossings (each edge of B has two faces; within 6% of the
- * count on the shared models' overlays: ratios 7.6 to 8.5). Where it
- * exceeds a lowered limit by more than a quarter, or, with max_expected
- * not 0, the budget as it stands (max_crossings, or limit where lower) by
- * more than a quarter or max_expected itself (UINT64_MAX: the budget
- * alone), the call fails at once with SQ_ERR_SOLVER ("expected"), about
- * 1/16 of the walk's time instead of the walk up to its budget; the
- * limit's check is repeated at the end, so the outcome does not depend on
- * when limit was lowered. sq_overlay_build is this with max_expected 0,
- * no limit, one thread: the sample only splits the walk. */
+ * count on the shared models' overlays: ratios 7.6 to 8.5). Where, with
+ * max_expected not 0, it exceeds max_crossings by more than a quarter or
+ * max_expected itself (UINT64_MAX: the budget alone), the call fails at
+ * once with SQ_ERR_SOLVER ("expected"), about 1/16 of the walk's time
+ * instead of the walk up to its budget. sq_overlay_build is this with
+ * max_expected 0, one thread: the sample only splits the walk. */
 sq_status sq_overlay_build_threads(uint32_t nbnd, uint32_t na, uint32_t nv, const double *xy,
                                    const sq_overlay_mesh *A, const sq_overlay_mesh *B, uint64_t max_crossings,
                                    uint64_t max_expected, uint32_t threads, const _Atomic int *cancel,
-                                   const _Atomic uint64_t *limit, sq_overlay *out, sq_error *err);
+                                   sq_overlay *out, sq_error *err);
 
 #ifdef __cplusplus
 }

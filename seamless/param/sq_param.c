@@ -56,7 +56,6 @@ typedef struct build_in {
     const int32_t *valence;        /* m->nv: a cone's valence, 4 elsewhere  */
     const sq_param_options *opt;   /* never NULL; stats are never NULL here */
     const _Atomic int *cancel;     /* may be NULL (sq_param_build_once)     */
-    const _Atomic uint64_t *limit; /* may be NULL (sq_param_build_once)     */
     uint32_t variant;              /* Algorithm 1's tie order (sq_guide_glue) */
     uint64_t gate;                 /* the overlay's expected crossings above */
                                    /* which the domain is given up (0: none) */
@@ -67,7 +66,7 @@ typedef struct build_in {
 static sq_status ctx_init(ctx *c, const build_in *in, sq_cut_graph *given_G, sq_error *err)
 {
     memset(c, 0, sizeof *c);
-    c->m = in->m, c->opt = in->opt, c->err = err, c->cancel = in->cancel, c->limit = in->limit, c->given_G = given_G;
+    c->m = in->m, c->opt = in->opt, c->err = err, c->cancel = in->cancel, c->given_G = given_G;
     c->glue.variant = in->variant, c->gate = in->gate;
     c->keep_flips = in->opt->allow_flips;
     c->root_step = c->root_surface = SQ_NONE;
@@ -317,11 +316,10 @@ static sq_status build_walled(const build_in *in, sq_param *out, sq_param_stats 
  * again without the gate. The same cut graph every time: this is one
  * attempt of sq_param_build. */
 sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                              const _Atomic int *cancel, const _Atomic uint64_t *limit, sq_param *out,
-                              sq_param_stats *stats, sq_error *err)
+                              const _Atomic int *cancel, sq_param *out, sq_param_stats *stats, sq_error *err)
 {
     const uint32_t nvar = opt->variants ? opt->variants : SQ_VARIANTS;
-    build_in in = {m, valence, opt, cancel, limit, 0, 0};
+    build_in in = {m, valence, opt, cancel, 0, 0};
     if (opt->tree != SQ_TREE_QTRI || sq_mesh_genus(m) < 1 || opt->max_crossings || nvar < 2)
         return build_walled(&in, out, stats, err);
     const uint64_t gate = (opt->variant_gate ? opt->variant_gate : SQ_VARIANT_PER_FACE) * (uint64_t)m->nf;
@@ -338,10 +336,6 @@ sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq
         in.variant = v, in.gate = gate;
         st = build_walled(&in, out, stats, err);
         if (st != SQ_ERR_SOLVER || !stats->gated || (cancel && atomic_load(cancel))) break;
-        /* another attempt set a budget: this one may only replace its map
-         * with the first domain's (sq_param_attempts.c, replaces_cells),
-         * which was given up */
-        if (limit && atomic_load(limit)) break;
         if (stats->crossings_expected < best) best = stats->crossings_expected, best_v = v;
     }
     if (v == nvar) { /* none under the gate */

@@ -1,8 +1,7 @@
 /* seamquad: the attempts of sq_param_build, one after another or several
  * at once.
  *
- * Attempt a uses the cut-graph seed seed + a (or seed + a / 2, alternating
- * the cone trees); only SQ_ERR_SOLVER (a map that fails its exact checks,
+ * Attempt a of each kind uses the cut-graph seed seed + a; only SQ_ERR_SOLVER (a map that fails its exact checks,
  * the Steiner budget) is retried. The result is the lowest attempt that
  * passes, or that fails otherwise; with every attempt failing, the last.
  * The attempts are taken in order by sq_param_options.threads threads
@@ -46,7 +45,6 @@ typedef struct job {
     sq_error err;
     sq_status st;
     _Atomic int cancel;
-    _Atomic uint64_t limit; /* the overlay's crossings allowed (0: its own) */
     int done;
     struct pool *pool;
 } job;
@@ -89,7 +87,7 @@ static void *worker(void *arg)
         P->next++;
         if (J->heavy) P->heavy_running = 1;
         pthread_mutex_unlock(&P->mu);
-        J->st = sq_param_build_once(P->m, P->valence, &J->o, &J->cancel, &J->limit, &J->out, &J->stats, &J->err);
+        J->st = sq_param_build_once(P->m, P->valence, &J->o, &J->cancel, &J->out, &J->stats, &J->err);
         pthread_mutex_lock(&P->mu);
         J->done = 1;
         if (J->heavy) P->heavy_running = 0;
@@ -136,7 +134,6 @@ static sq_status run_jobs(const sq_mesh *m, const int32_t *valence, const sq_par
         J->o.progress = job_progress, J->o.progress_ctx = J;
         J->pool = &P, J->st = SQ_ERR_SOLVER;
         atomic_init(&J->cancel, 0);
-        atomic_init(&J->limit, 0);
         sq_param_init(&J->out);
     }
     /* threads - 1 helpers; this thread works too */

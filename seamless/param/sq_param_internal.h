@@ -21,12 +21,9 @@ int sq_param_uses_algorithm1(int guidance, int genus);
 /* One attempt of sq_param_build at opt->seed (sq_param.c): cut graph,
  * domain, cuts, maps and their refinement rounds. cancel (may be NULL):
  * when another thread sets it, the attempt stops at its next Steiner
- * budget check or round with SQ_ERR_SOLVER (its result is then unused).
- * limit (may be NULL): a crossing budget of the overlay that another
- * thread may set while the attempt runs (0: none; sq_overlay.h). */
+ * budget check or round with SQ_ERR_SOLVER (its result is then unused). */
 sq_status sq_param_build_once(const sq_mesh *m, const int32_t *valence, const sq_param_options *opt,
-                              const _Atomic int *cancel, const _Atomic uint64_t *limit, sq_param *out,
-                              sq_param_stats *stats, sq_error *err);
+                              const _Atomic int *cancel, sq_param *out, sq_param_stats *stats, sq_error *err);
 
 /* Steiner vertices an attempt may add (sq_param_options.max_steiner, or
  * 9 per input vertex + 100000). */

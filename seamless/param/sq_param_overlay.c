@@ -407,7 +407,7 @@ static sq_status overlay_with(ctx *c, const surface_disk *A, const uint32_t *ose
      * budget (the overlay's rule) or more than the variants' gate; a
      * failure counts as the gate's where the gate is below the former */
     st = sq_overlay_build_threads(A->nbl, A->na, B.nv, B.xy, &Am, &Bm, budget, c->gate ? c->gate : UINT64_MAX,
-                                  c->opt->threads ? c->opt->threads : 1, c->cancel, c->limit, &X, c->err);
+                                  c->opt->threads ? c->opt->threads : 1, c->cancel, &X, c->err);
     stats->crossings_expected = X.expected;
     stats->gated = st == SQ_ERR_SOLVER && c->gate && c->gate < budget + budget / 4 && X.expected > c->gate;
     if (st == SQ_ERR_SOLVER && by_memory && !stats->gated && !cancelled(c) && c->err) {

@@ -81,9 +81,6 @@ typedef struct ctx {
                          /* (seed 9.2 guidance), SQ_NONE elsewhere; NULL   */
                          /* when unguided                                  */
     const _Atomic int *cancel;  /* another attempt passed: stop (may be NULL)  */
-    const _Atomic uint64_t *limit; /* the overlay's crossings allowed, set by  */
-                                   /* another attempt while this one runs (0: */
-                                   /* none; may be NULL)                      */
     uint64_t gate;              /* domain variants: the overlay's expected    */
                                 /* crossings above which this domain is given */
                                 /* up for the next variant (0: none)          */

@@ -101,7 +101,7 @@ static uint32_t check_pair(uint32_t n)
     /* B's faces in two ranges in two threads: the same overlay, bit for bit */
     {
         sq_overlay Y;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, NULL, NULL, &Y, &err), SQ_OK);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, NULL, &Y, &err), SQ_OK);
         assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
         assert_memory_equal(Y.x_ha, X.x_ha, X.nx * sizeof *X.x_ha);
         assert_memory_equal(Y.x_hb, X.x_hb, X.nx * sizeof *X.x_hb);
@@ -115,29 +115,29 @@ static uint32_t check_pair(uint32_t n)
         sq_overlay_free(&Y);
         /* cancelled (as by another attempt that passed): no overlay */
         _Atomic int cancel = 1;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, &cancel, NULL, &Y, &err), SQ_ERR_SOLVER);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, &cancel, &Y, &err), SQ_ERR_SOLVER);
         assert_non_null(strstr(err.msg, "cancelled"));
         assert_null(Y.tri);
         atomic_store(&cancel, 0);
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 1, &cancel, NULL, &Y, &err), SQ_OK);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 1, &cancel, &Y, &err), SQ_OK);
         assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
         sq_overlay_free(&Y);
-        /* a budget set while it runs: below the crossings (or a quarter
-         * below the expectation), it stops; at them, the same overlay */
-        _Atomic uint64_t limit = X.nx > X.expected ? X.nx : X.expected;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, NULL, &limit, &Y, &err), SQ_OK);
+        /* a budget: at the crossings (or a quarter below the expectation,
+         * which the budget alone is checked against), the same overlay;
+         * below them it stops; with room for the crossings but not the
+         * expectation, it stops at the sample */
+        const uint64_t room = X.nx > X.expected ? X.nx : X.expected;
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, room, UINT64_MAX, 2, NULL, &Y, &err), SQ_OK);
         assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
         sq_overlay_free(&Y);
         if (X.nx >= 3) { /* one range has more than a third */
-            atomic_store(&limit, X.nx / 3);
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 1, NULL, &limit, &Y, &err),
+            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, X.nx / 3, 0, 1, NULL, &Y, &err),
                              SQ_ERR_SOLVER);
             assert_non_null(strstr(err.msg, "crossings"));
             assert_null(Y.tri);
         }
         if (X.expected > 5 * (uint64_t)X.nx / 4 + 8) { /* room for the crossings, not the expectation */
-            atomic_store(&limit, X.nx + 1);
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, NULL, &limit, &Y, &err),
+            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, X.nx + 1, UINT64_MAX, 2, NULL, &Y, &err),
                              SQ_ERR_SOLVER);
             assert_non_null(strstr(err.msg, "expected"));
             assert_null(Y.tri);
@@ -146,12 +146,12 @@ static uint32_t check_pair(uint32_t n)
          * max_expected, no walk (and no overlay), at it, the same overlay */
         assert_true(X.expected == 0 || B.nf >= 32);
         if (X.expected) {
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, X.expected, 2, NULL, NULL, &Y, &err),
+            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, X.expected, 2, NULL, &Y, &err),
                              SQ_OK);
             assert_true(Y.nx == X.nx && Y.ntri == X.ntri && Y.expected == X.expected);
             assert_memory_equal(Y.tri, X.tri, 3 * (size_t)X.ntri * sizeof *X.tri);
             sq_overlay_free(&Y);
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, X.expected - 1, 1, NULL, NULL, &Y,
+            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, X.expected - 1, 1, NULL, &Y,
                                                       &err),
                              SQ_ERR_SOLVER);
             assert_non_null(strstr(err.msg, "expected"));
@@ -164,7 +164,7 @@ static uint32_t check_pair(uint32_t n)
          * would */
         if (X.expected >= 16) {
             const uint64_t sample = X.expected / 8;
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, sample - 1, 0, 2, NULL, NULL, &Y, &err),
+            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, sample - 1, 0, 2, NULL, &Y, &err),
                              SQ_ERR_SOLVER);
             assert_non_null(strstr(err.msg, "alone made"));
             assert_null(Y.tri);
