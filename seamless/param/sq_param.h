@@ -147,11 +147,9 @@ typedef struct sq_param_options {
 enum { SQ_INTERIOR_AUTO = 0, SQ_INTERIOR_CELLS = 1, SQ_INTERIOR_OVERLAY = 2 };
 enum { SQ_SIMPLIFY_ON = 0, SQ_SIMPLIFY_OFF = 1 };
 enum { SQ_FANS_ON = 0, SQ_FANS_OFF = 1 };
-/* SQ_TREE_AUTO: tree qtri's attempts (at most SQ_QTRI_ATTEMPTS), the
- * surface tree's after its first (from the SQ_SURFACE_AFTER-th on, the
- * surface tree's and qtri's others in turn; sq_param_attempts.c) */
+/* SQ_TREE_AUTO: tree qtri's attempts (at most SQ_QTRI_ATTEMPTS), then the
+ * surface tree's (sq_param_attempts.c) */
 #define SQ_QTRI_ATTEMPTS 4
-#define SQ_SURFACE_AFTER 2
 #define SQ_QTRI_PER_FACE 400u
 #define SQ_QTRI_MAX_CROSSINGS 10000000u
 /* tree qtri: domains per attempt (Algorithm 1's ties broken otherwise)
@@ -164,13 +162,12 @@ enum { SQ_FANS_ON = 0, SQ_FANS_OFF = 1 };
 
 /* Cone tree modes (sq_param_options.tree; genus >= 1):
  *  SQ_TREE_AUTO (default): where the other choices are at their defaults,
- *    tree qtri's first attempt, then the surface tree's first
- *    SQ_SURFACE_AFTER attempts, then qtri's others (at most
- *    SQ_QTRI_ATTEMPTS in all), then the surface tree's others; the lowest
- *    that passes is the result (stats.fallback: the surface tree's). On
- *    the shared models qtri passes first on every one of genus >= 1, with
- *    a mean conformal ratio as low as the surface tree's or far lower
- *    (helmet 29.5 against 419, rocker_arm 735 against 2e8;
+ *    tree qtri's attempts (at most SQ_QTRI_ATTEMPTS), then the surface
+ *    tree's; the lowest that passes is the result (stats.fallback: the
+ *    surface tree's). On the shared models qtri passes on every one of
+ *    genus >= 1 (at its first attempt for genus >= 2, within 3 for genus
+ *    1), with a mean conformal ratio as low as the surface tree's or far
+ *    lower (helmet 29.5 against 419, rocker_arm 735 against 2e8;
  *    bench/bench_param_modes.sh). Otherwise, and for genus 0, as
  *    SQ_TREE_SURFACE.
  *  SQ_TREE_SURFACE: with guidance, the surface tree (seed 9.4) replicated

@@ -186,16 +186,6 @@ static sq_param_options tree_options(const sq_mesh *m, const sq_param_options *o
     return f;
 }
 
-/* The surface tree's attempt at list position a (build_attempts' order:
- * positions 1 .. after, then after + nq .. on), or SQ_NONE: one of tree
- * qtri's (positions 0 and after + 1 .. after + nq - 1). */
-static uint32_t surface_index(uint32_t a, uint32_t after, uint32_t nq)
-{
-    if (!nq) return a;
-    if (a == 0) return SQ_NONE;
-    if (a <= after) return a - 1;
-    return a < after + nq ? SQ_NONE : a - nq;
-}
 
 /* The attempts of sq_param_build on m (the input, or the input with
  * edges between cones split), of one kind or both, in the order below;
@@ -207,18 +197,16 @@ static sq_status build_attempts(const sq_mesh *m, const int32_t *valence, const 
     const sq_param_options o = *opt;
     const uint32_t n = o.attempts ? o.attempts : 1;
     sq_status st;
-    /* SQ_TREE_AUTO with both trees, in this order: tree qtri's first
-     * attempt, the surface tree's first SQ_SURFACE_AFTER, tree qtri's
-     * others (at most SQ_QTRI_ATTEMPTS in all), the surface tree's others.
-     * Why: tree qtri's maps are as little distorted as the surface tree's
-     * or far less (helmet 29.5 against 419, sculpt 92 against 367,
-     * rocker_arm 735 against 2e8), and it passes first on every shared
-     * model of genus >= 1 (bench/bench_param_modes.sh); where its first
-     * fails, its others rarely pass, and the surface tree's attempts, light
-     * ones, may run two at a time. One ordered list on the threads: the
-     * result is the lowest that passes, whatever the threads. */
+    /* SQ_TREE_AUTO with both trees, in this order: tree qtri's attempts
+     * (at most SQ_QTRI_ATTEMPTS), then the surface tree's. Why: tree
+     * qtri's maps are as little distorted as the surface tree's or far
+     * less (helmet 29.5 against 419, sculpt 92 against 367, rocker_arm 735
+     * against 2e8), and on the shared models it passes within its first 3
+     * attempts on every one of genus >= 1 (the first for genus >= 2;
+     * bench/bench_param_modes.sh, bench_param.sh). One ordered list on
+     * the threads: the result is the lowest that passes, whatever the
+     * threads. */
     const int both = uses_both_trees(&o, sq_mesh_genus(m));
-    const uint32_t after = both && n > SQ_SURFACE_AFTER ? SQ_SURFACE_AFTER : n;
     const uint32_t nq = both ? (n < SQ_QTRI_ATTEMPTS ? n : SQ_QTRI_ATTEMPTS) : 0;
     const uint32_t total = n + nq;
     job *jobs = calloc(total, sizeof *jobs);
@@ -228,18 +216,17 @@ static sq_status build_attempts(const sq_mesh *m, const int32_t *valence, const 
     uint32_t last_q = 0, last_s = 0;
     for (uint32_t a = 0; a < total; a++) {
         job *J = &jobs[a];
-        const uint32_t d = surface_index(a, after, nq);
-        if (d != SQ_NONE) {
+        if (a >= nq) {
+            const uint32_t d = a - nq;
             J->o = attempt_options(&fs, d);
             J->heavy = fs.tree == SQ_TREE_QTRI;
             J->msg = !d ? (nq ? "fallback: the surface tree replicated in Q's quads" : NULL)
                         : "retry with another cut graph";
             last_s = a;
         } else {
-            const uint32_t k = a ? a - after : 0;
-            J->o = attempt_options(&fq, k);
+            J->o = attempt_options(&fq, a);
             J->heavy = 1;
-            J->msg = k ? "retry tree qtri with another cut graph" : NULL;
+            J->msg = a ? "retry tree qtri with another cut graph" : NULL;
             last_q = a;
         }
     }
