@@ -30,6 +30,48 @@ sq_status sq_disk_layout_tutte(const sq_metapolygon *P, uint32_t start, double *
     return sq_disk_layout_tutte_fixed(P, xy, err);
 }
 
+/* Every vertex with idx[v] != SQ_NONE (numbered 0 .. ni-1) to the average
+ * of its neighbours, the others fixed at xy: one sparse SPD solve. The
+ * edges: with faces_only 0, every halfedge out of a free vertex (a disk:
+ * each edge once per end); with 1, every face halfedge from both ends (a
+ * cut sphere: each edge twice, the cut edge too, so uniform weights). */
+static sq_status tutte_solve(const sq_metapolygon *P, const uint32_t *idx, uint32_t ni, int faces_only, double *xy,
+                             sq_error *err)
+{
+    if (ni == 0) return SQ_OK;
+    size_t cap = 4 * (size_t)P->nh + 1, nnz = 0;
+    uint32_t *ri = malloc(cap * sizeof *ri), *ci = malloc(cap * sizeof *ci);
+    double *val = malloc(cap * sizeof *val);
+    double *rhs = calloc(2 * (size_t)ni, sizeof *rhs), *sol = malloc(2 * (size_t)ni * sizeof *sol);
+    sq_status st = SQ_OK;
+    if (!ri || !ci || !val || !rhs || !sol) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
+    for (uint32_t e = 0; st == SQ_OK && e < P->nh; e++) {
+        if (faces_only && P->he_face[e] == SQ_NONE) continue;
+        const uint32_t end[2] = {P->he_vert[e], P->he_vert[P->he_next[e]]};
+        for (int s = 0; s < (faces_only ? 2 : 1); s++) {
+            uint32_t a = end[s], b = end[1 - s];
+            if (idx[a] == SQ_NONE) continue;
+            ri[nnz] = idx[a], ci[nnz] = idx[a], val[nnz++] = 1.0;
+            if (idx[b] != SQ_NONE) {
+                ri[nnz] = idx[a], ci[nnz] = idx[b], val[nnz++] = -1.0;
+            } else {
+                rhs[idx[a]] += xy[2 * b];
+                rhs[ni + idx[a]] += xy[2 * b + 1];
+            }
+        }
+    }
+    if (st == SQ_OK) {
+        sq_spd *f = NULL;
+        st = sq_spd_factor(ni, nnz, ri, ci, val, &f, err);
+        if (st == SQ_OK) st = sq_spd_solve(f, 2, rhs, sol, err);
+        sq_spd_free(f);
+    }
+    for (uint32_t v = 0; st == SQ_OK && v < P->nv; v++)
+        if (idx[v] != SQ_NONE) xy[2 * v] = sol[idx[v]], xy[2 * v + 1] = sol[ni + idx[v]];
+    free(ri), free(ci), free(val), free(rhs), free(sol);
+    return st;
+}
+
 sq_status sq_disk_layout_tutte_fixed(const sq_metapolygon *P, double *xy, sq_error *err)
 {
     const uint32_t nv = P->nv;
@@ -41,44 +83,8 @@ sq_status sq_disk_layout_tutte_fixed(const sq_metapolygon *P, double *xy, sq_err
     uint32_t ni = 0;
     for (uint32_t v = 0; v < nv; v++)
         if (idx[v] != SQ_NONE) idx[v] = ni++;
-    sq_status st = SQ_OK;
-    if (ni == 0) goto done;
-
     /* uniform Laplacian over the interior: L x = sum of boundary neighbours */
-    size_t cap = 2 * (size_t)P->nh, nnz = 0;
-    uint32_t *ri = malloc(cap * sizeof *ri), *ci = malloc(cap * sizeof *ci);
-    double *val = malloc(cap * sizeof *val);
-    double *rhs = calloc(2 * (size_t)ni, sizeof *rhs), *sol = malloc(2 * (size_t)ni * sizeof *sol);
-    if (!ri || !ci || !val || !rhs || !sol) {
-        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-        goto free_system;
-    }
-    for (uint32_t e = 0; e < P->nh; e++) {
-        uint32_t a = P->he_vert[e], b = P->he_vert[P->he_next[e]];
-        if (idx[a] == SQ_NONE) continue;
-        /* every halfedge out of an interior vertex is one edge of it */
-        ri[nnz] = idx[a], ci[nnz] = idx[a], val[nnz++] = 1.0;
-        if (idx[b] != SQ_NONE) {
-            ri[nnz] = idx[a], ci[nnz] = idx[b], val[nnz++] = -1.0;
-        } else {
-            rhs[idx[a]] += xy[2 * b];
-            rhs[ni + idx[a]] += xy[2 * b + 1];
-        }
-    }
-    sq_spd *f = NULL;
-    st = sq_spd_factor(ni, nnz, ri, ci, val, &f, err);
-    if (st == SQ_OK) st = sq_spd_solve(f, 2, rhs, sol, err);
-    sq_spd_free(f);
-    if (st == SQ_OK) {
-        for (uint32_t v = 0; v < nv; v++) {
-            if (idx[v] == SQ_NONE) continue;
-            xy[2 * v] = sol[idx[v]];
-            xy[2 * v + 1] = sol[ni + idx[v]];
-        }
-    }
-free_system:
-    free(ri), free(ci), free(val), free(rhs), free(sol);
-done:
+    sq_status st = tutte_solve(P, idx, ni, 0, xy, err);
     free(idx);
     return st;
 }
@@ -108,37 +114,7 @@ sq_status sq_disk_layout_sphere(const sq_metapolygon *P, uint32_t outer, double 
     uint32_t ni = 0;
     for (uint32_t v = 0; v < nv; v++)
         if (idx[v] != SQ_NONE) idx[v] = ni++;
-    sq_status st = SQ_OK;
-    size_t cap = 4 * (size_t)P->nh + 1, nnz = 0;
-    uint32_t *ri = malloc(cap * sizeof *ri), *ci = malloc(cap * sizeof *ci);
-    double *val = malloc(cap * sizeof *val);
-    double *rhs = calloc(2 * (size_t)ni + 1, sizeof *rhs), *sol = malloc((2 * (size_t)ni + 1) * sizeof *sol);
-    if (!ri || !ci || !val || !rhs || !sol) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory");
-    /* every face halfedge a -> b, from both ends: each edge of the sphere
-     * twice (its two faces), so uniform weights */
-    for (uint32_t e = 0; st == SQ_OK && e < P->nh; e++) {
-        if (P->he_face[e] == SQ_NONE) continue;
-        uint32_t end[2] = {P->he_vert[e], P->he_vert[P->he_next[e]]};
-        for (int s = 0; s < 2; s++) {
-            uint32_t a = end[s], b = end[1 - s];
-            if (idx[a] == SQ_NONE) continue;
-            ri[nnz] = idx[a], ci[nnz] = idx[a], val[nnz++] = 1.0;
-            if (idx[b] != SQ_NONE) {
-                ri[nnz] = idx[a], ci[nnz] = idx[b], val[nnz++] = -1.0;
-            } else {
-                rhs[idx[a]] += xy[2 * b];
-                rhs[ni + idx[a]] += xy[2 * b + 1];
-            }
-        }
-    }
-    if (st == SQ_OK && ni > 0) {
-        sq_spd *f = NULL;
-        st = sq_spd_factor(ni, nnz, ri, ci, val, &f, err);
-        if (st == SQ_OK) st = sq_spd_solve(f, 2, rhs, sol, err);
-        sq_spd_free(f);
-        for (uint32_t v = 0; st == SQ_OK && v < nv; v++)
-            if (idx[v] != SQ_NONE) xy[2 * v] = sol[idx[v]], xy[2 * v + 1] = sol[ni + idx[v]];
-    }
-    free(ri), free(ci), free(val), free(rhs), free(sol), free(idx);
+    sq_status st = tutte_solve(P, idx, ni, 1, xy, err);
+    free(idx);
     return st;
 }
