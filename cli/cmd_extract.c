@@ -51,6 +51,10 @@ static void help(FILE *f)
             "published maps), the vertices of folded quads other than cones move\n"
             "towards their neighbours' mean, projected back onto MESH, each move kept\n"
             "only if it unfolds; the summary counts the folds before and after.\n"
+            "(6) Every quad is judged as check_quad.py judges it: none folded, no edge\n"
+            "of length <= 1e-12 of the bounding-box diagonal, no area <= 1e-12 of its\n"
+            "square; one such quad and nothing is written (exit 1, the counts and the\n"
+            "first quad named).\n"
             "\n"
             "Guarantees of QUADS.obj (written only when all hold):\n"
             "  - only quads; closed, manifold, consistently oriented (as MESH), one\n"
@@ -59,12 +63,11 @@ static void help(FILE *f)
             "    vertex of valence k; every other vertex has valence 4;\n"
             "  - every vertex lies on MESH (a convex combination of one triangle's\n"
             "    corners); no quad repeats a vertex, no two edges join the same points;\n"
-            "  - the number of quads equals the UV area of the map.\n"
-            "The shapes are the map's: where it is strongly distorted, a quad spanning a\n"
-            "bent region may be folded in 3D (param's unit-scale maps give 15 to 50%%\n"
-            "folded quads; the maps `seamquad quantize` makes of smooth seamless maps\n"
-            "few or none, see docs/extract.md); `seamquad smooth` reduces folds\n"
-            "without changing the connectivity, but may not remove them all.\n"
+            "  - the number of quads equals the UV area of the map;\n"
+            "  - no quad folded, none with a zero-length edge or zero area (step 6).\n"
+            "The shapes are the map's: where it is strongly distorted, quads spanning\n"
+            "bent regions fold in 3D that step 5 may not unfold (param's maps, see\n"
+            "docs/extract.md); `seamquad optimize` lowers a map's distortion first.\n"
             "\n"
             "options:\n"
             "  -o QUADS.obj  the quad mesh (v and f lines; vertices at mesh vertices\n"
@@ -102,6 +105,8 @@ typedef struct report {
     sq_map_report map;
     sq_extract_stats st;
     sq_untangle_stats un;
+    sq_quad_shapes shapes;
+    int shapes_checked;
     int untangle;
     double t_untangle;
     uint32_t hist[MAX_VALENCE_HIST]; /* quad mesh valences */
@@ -175,6 +180,9 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
                    "\"untangle_rounds\": %u, \"untangle_s\": %.6f",
                    r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
     }
+    if (r->shapes_checked)
+        printf(",\n  \"degenerate\": {\"short_edge\": %u, \"tiny\": %u, \"folded\": %u}", r->shapes.short_edge,
+               r->shapes.tiny, r->shapes.folded);
     printf(",\n  \"time_s\": {\"read\": %.6f, \"map\": %.6f, \"check\": %.6f, \"points\": %.6f, "
            "\"trace\": %.6f, \"quads\": %.6f, \"positions\": %.6f, \"extract\": %.6f, "
            "\"write\": %.6f, \"total\": %.6f}",
@@ -293,6 +301,11 @@ int sq_cmd_extract(int argc, char **argv)
         double t1 = sq_now();
         st = sq_extract_untangle(&M, &Q, &r.un, &err);
         r.t_untangle = sq_now() - t1;
+    }
+    if (!st) { /* no quad the referee would reject: nothing written */
+        stage = "shapes";
+        st = sq_quad_mesh_check_shapes(&Q, sq_bbox_diagonal(M.mesh.nv, M.mesh.pos), &r.shapes, &err);
+        r.shapes_checked = 1;
     }
     if (!st) {
         r.done = 1;

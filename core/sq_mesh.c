@@ -507,3 +507,13 @@ sq_status sq_mesh_from_soup(const sq_soup *s, unsigned flags, sq_mesh *out, sq_e
     *out = m;
     return SQ_OK;
 }
+
+double sq_bbox_diagonal(uint32_t nv, const double *pos)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t v = 0; v < nv; v++)
+        for (int i = 0; i < 3; i++)
+            lo[i] = fmin(lo[i], pos[3 * (size_t)v + i]), hi[i] = fmax(hi[i], pos[3 * (size_t)v + i]);
+    if (!nv) return 0.0;
+    return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}

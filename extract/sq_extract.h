@@ -120,6 +120,23 @@ typedef struct sq_untangle_stats {
  * many); the call fails only for lack of memory. */
 sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stats *stats, sq_error *err);
 
+/* What the referee (check_quad.py, degeneracy) rejects in a quad mesh's
+ * geometry, counted; first_* are 0-based quad indices (UINT32_MAX: none). */
+typedef struct sq_quad_shapes {
+    uint32_t short_edge;  /* quads with an edge <= 1e-12 diag long             */
+    uint32_t tiny;        /* other quads of area <= 1e-12 diag^2 (the mean of   */
+                          /* their two triangulations' areas)                  */
+    uint32_t folded;      /* both triangulations bent by more than 90 degrees   */
+                          /* (sq_quad_fold_margin < 0)                         */
+    uint32_t first_short_edge, first_tiny, first_folded;
+} sq_quad_shapes;
+
+/* Step 6 (sq_quad_mesh_check_shapes.c): every quad of Q judged against
+ * diag (the input's bounding-box diagonal). SQ_ERR_DEGENERATE when any
+ * count is non-zero, the message naming the first quad (1-based, as in
+ * the OBJ); out (may be NULL) receives the counts either way. O(nq). */
+sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, double diag, sq_quad_shapes *out, sq_error *err);
+
 #ifdef __cplusplus
 }
 #endif

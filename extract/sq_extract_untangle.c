@@ -6,7 +6,8 @@
  * cones of published maps, whose 1-rings carry most of their distortion.
  * The connectivity is right; the positions are not. Each round moves every
  * vertex of a folded quad that is not a cone towards the mean of its edge
- * neighbours (else the mean of its quads' corners, else one neighbour),
+ * neighbours (else the mean of its quads' corners, else one neighbour,
+ * else the point that makes one of its quads a parallelogram),
  * projected back onto the surface (the nearest point of the map's mesh: a
  * barycentric combination of one triangle's corners), with the step
  * halved until the worst fold margin (sq_quad_fold_margin) of the quads
@@ -105,7 +106,7 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
             memcpy(old, Q->pos + 3 * (size_t)v, sizeof old);
             /* candidate targets: the mean of the edge neighbours, the mean
              * of the quads' corners around v, then each edge neighbour */
-            uint32_t deg = nb_off[v + 1] - nb_off[v], ncand = 2 + deg;
+            uint32_t deg = nb_off[v + 1] - nb_off[v], nquad = vq_off[v + 1] - vq_off[v], ncand = 2 + deg + nquad;
             double best = cur, best_p[3] = {0, 0, 0}, best_bary[3] = {0, 0, 0};
             uint32_t best_tri = UINT32_MAX;
             for (uint32_t c = 0; c < ncand; c++) {
@@ -119,8 +120,15 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
                         for (int j = 0; j < 4; j++, n++)
                             for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)Q->quad[4 * (size_t)vq[k] + j] + i];
                     for (int i = 0; i < 3; i++) tgt[i] /= n;
-                } else {
+                } else if (c < 2 + deg) {
                     memcpy(tgt, Q->pos + 3 * (size_t)nb[nb_off[v] + c - 2], sizeof tgt);
+                } else { /* the corner that makes quad k a parallelogram */
+                    const uint32_t *q = Q->quad + 4 * (size_t)vq[vq_off[v] + c - 2 - deg];
+                    int j = 0;
+                    while (q[j] != v) j++;
+                    for (int i = 0; i < 3; i++)
+                        tgt[i] = Q->pos[3 * (size_t)q[(j + 1) % 4] + i] + Q->pos[3 * (size_t)q[(j + 3) % 4] + i] -
+                                 Q->pos[3 * (size_t)q[(j + 2) % 4] + i];
                 }
                 for (double step = c < 2 ? 1.0 : 0.5; step > 1.0 / 64; step *= 0.5) {
                     double p[3];

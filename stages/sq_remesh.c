@@ -358,7 +358,10 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
             goto fail;
         }
     }
+    /* no quad the referee would reject as degenerate */
+    st = sq_quad_mesh_check_shapes(&out->quads, sq_bbox_diagonal(m->nv, m->pos), NULL, err);
     stats->t_verify = sq_now() - t1;
+    if (st) goto fail;
     report(&pc, 1);
     if (opt->keep_maps) {
         out->optimized = M;

@@ -88,6 +88,7 @@ for part in ("faces", "topology", "valence"):
     assert r[part]["passed"], (part, r[part]["failures"])
 d = r["degeneracy"]
 assert d["repeated_vertex"] == 0 and d["tiny_area"] == 0 and d["zero_length_edge"] == 0, d
+assert d["folded"] == 0 and j["degenerate"] == {"short_edge": 0, "tiny": 0, "folded": 0}, (d, j)
 assert r["fidelity"]["quad_vertices_to_input"]["max_rel"] < 1e-9, r["fidelity"]
 print("%d quads, %d vertices, %d irregular, genus %d; referee: faces, topology, valences, cones "
       "PASS, %d folded quads; %.3f s" % (nf, nv, j["irregular"], r["topology"]["genus"],
@@ -151,6 +152,8 @@ if [ -s "$igm" ]; then
   # every vt times 1/2: seams still integer, but cones on half-integers
   scale "$igm" 0.5 "$tmp/half.obj"
   refused "cone off the integer grid" "not on an integer point" "$eight" "$tmp/half.obj"
+  # param's map as it is: quads folded in 3D (not untangled) are refused
+  refused "folded quads (--untangle off)" "quads are folded over the surface" "$eight" "$igm" --untangle off
   # no vt at all
   sed -e '/^vt /d' -e 's#/[0-9]*##g' "$igm" >"$tmp/novt.obj"
   refused "missing vt" "vt" "$eight" "$tmp/novt.obj"
