@@ -187,7 +187,7 @@ static void help(FILE *f)
             "  --variant-gate N    see --variants\n"
             "  --json              machine-readable statistics on stdout: sizes, domain,\n"
             "                      seams, distortion, time per step, peak memory\n"
-            "  --quiet             no progress lines on stderr\n"
+            "  --quiet             no progress on stderr, no summary on stdout\n"
             "  -h, --help          this help\n"
             "\n"
             "Outputs are written together at the end: on any error none of them is\n"
@@ -792,7 +792,7 @@ int sq_cmd_param(int argc, char **argv)
     if (json)
         print_json(mesh_path, cones_path, &stats, hist, t_read, t_validate, t_verify, t_output,
                    sq_now() - t0, out);
-    else
+    else if (!quiet)
         print_text(mesh_path, &stats, hist, t_read, t_validate, t_verify, t_output, sq_now() - t0,
                    out);
     goto done;
