@@ -14,6 +14,10 @@
 # the same figures for QuadriFlow. "dist" is the larger of the referee's
 # two one-sided vertex distances (quad vertices to the input, input vertices
 # to the quads), relative to the diagonal. SQ_BIN selects the binary.
+#
+# SQ_BENCH_MAP=param: the maps are `seamquad param`'s for the same cones
+# (made once per model, default options), not the published ones; the
+# QuadriFlow columns are left out.
 set -u
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${SQ_BIN:-$root/build/bin/seamquad}
@@ -55,7 +59,15 @@ for n in "${targets[@]}"; do
     mesh=$data/$m.obj
     cones=$data/${m}_Th_hat
     row="| $m | $n |"
-    if "$bin" quantize "$mesh" --map "$mesh" --cones "$cones" --quads "$n" -o "$tmp/igm.obj" --json \
+    map=$mesh
+    if [ "${SQ_BENCH_MAP:-published}" = param ]; then
+      map=$tmp/$m.param.obj
+      if [ ! -s "$map" ] && ! "$bin" param "$mesh" --cones "$cones" -o "$map" --quiet >/dev/null 2>"$tmp/err"; then
+        echo "$row param failed: $(tail -1 "$tmp/err" | cut -c1-80) | | | | | | |"
+        continue
+      fi
+    fi
+    if "$bin" quantize "$mesh" --map "$map" --cones "$cones" --quads "$n" -o "$tmp/igm.obj" --json \
         >"$tmp/q.json" 2>"$tmp/err" &&
       "$bin" extract "$mesh" "$tmp/igm.obj" -o "$tmp/quads.obj" --json >"$tmp/x.json" 2>>"$tmp/err"; then
       read -r quads least tq tx < <(python3 -c "
