@@ -22,7 +22,9 @@
  *     fails or its result fails the verify stage where theirs passes;
  *  8. verify: the quad surface (each quad split along its shorter
  *     diagonal) must not intersect itself where the input does not
- *     (CGAL's exact test, sq_cgal_adapter.h); if it does, the run fails.
+ *     (CGAL's exact test, sq_cgal_adapter.h), and no quad may be folded,
+ *     have an edge shorter than 1e-12 of the diagonal or an area below
+ *     1e-12 of its square (sq_quad_mesh_check_shapes); else the run fails.
  *
  * Guarantees of a successful result: a closed, manifold, pure-quad mesh of
  * the input's genus whose irregular vertices are exactly the cones (a cone
