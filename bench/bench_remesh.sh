@@ -11,6 +11,9 @@
 #   SQ_BENCH_TARGETS  quad targets (default "5000")
 #   SQ_BENCH_PEERS    1: run the peers too (default 1)
 #   SQ_BENCH_ITER     seamquad's optimizer iterations (default: remesh's)
+#   SQ_BENCH_MAP      1: seamquad starts from the seamless map stored in MESH
+#                     (its vt: the published maps of mpz/*.obj) with
+#                     `--map MESH`, instead of param's (default 0)
 #   SQ_BIN            the seamquad binary
 #
 # Every output goes through shared/tools/check_quad.py (--cones for ours when
@@ -83,8 +86,10 @@ for spec in "${models[@]}"; do
     args=(remesh "$mesh" --quads "$n" -o "$tmp/sq.obj" --quiet)
     [ -n "$cones" ] && args+=(--cones "$cones")
     [ -n "$iter" ] && args+=(--iterations "$iter")
+    [ "${SQ_BENCH_MAP:-0}" = 1 ] && args+=(--map "$mesh")
     read -r rc secs mb < <(timed "$tmp/sq" "$bin" "${args[@]}")
     ctag=$([ -n "$cones" ] && basename "$cones" || echo field)
+    [ "${SQ_BENCH_MAP:-0}" = 1 ] && ctag="$ctag, its vt"
     if [ "$rc" = 0 ]; then
       read -r valid irr ang amin sj dist < <(referee "$mesh" "$tmp/sq.obj" "$cones")
       echo "| $name | $ctag | $n | seamquad | $(grep -c '^f ' "$tmp/sq.obj") | $valid | $irr | $ang | $amin | $sj | $dist | $secs | $mb |"

@@ -18,7 +18,8 @@
 static void help(FILE *f)
 {
     fprintf(f,
-            "usage: seamquad remesh MESH -o QUADS.obj [--cones FILE] [--quads N | --edge-length L]\n"
+            "usage: seamquad remesh MESH -o QUADS.obj [--cones FILE] [--map MAP.obj]\n"
+            "                       [--quads N | --edge-length L]\n"
             "                       [--smooth on|off] [--step OUT.step] [--iges OUT.igs]\n"
             "                       [--limit OUT.obj [--level K]] [--iterations N] [--seed S]\n"
             "                       [--keep DIR] [--picture VIEW.svg] [--json] [--quiet]\n"
@@ -64,7 +65,12 @@ static void help(FILE *f)
             "  -o QUADS.obj         the quad mesh\n"
             "  --cones FILE         the cones (Th_hat angles or a `VERTEX VALENCE` list);\n"
             "                       default: from a smooth cross field\n"
-            "  --quads N            about N quads (default 5000; 1 <= N <= 1e8); below the\n"
+            "  --map MAP.obj        start from this seamless map of MESH instead of param's\n"
+            "                       (an OBJ with f v/vt corners, e.g. another tool's, as\n"
+            "                       `seamquad quantize --map` takes it: made exact or\n"
+            "                       refused); its cones are the run's (with --cones they\n"
+            "                       must agree); optimize runs on it whole\n"
+"  --quads N            about N quads (default 5000; 1 <= N <= 1e8); below the\n"
             "                       fewest the cones' layout allows, that fewest\n"
             "  --edge-length L      quad edges of about L on the surface instead\n"
             "  --smooth on|off      the smoothing stage (default on)\n"
@@ -78,7 +84,7 @@ static void help(FILE *f)
             "                       per 30K map faces)\n"
             "  --seed S             param's cut-graph seed (default 1; 4 attempts)\n"
             "  --keep DIR           also write every intermediate into DIR: cones.txt,\n"
-            "                       map.obj (param's), optimized.obj, igm.obj\n"
+            "                       map.obj (param's; not with --map), optimized.obj, igm.obj\n"
             "  --picture VIEW.svg   a shaded view of the quads (irregular vertices red\n"
             "                       below valence 4, blue above)\n"
             "  --json               statistics on stdout: per stage sizes, quality, times\n"
@@ -121,11 +127,16 @@ static sq_status write_keep(const char *dir, uint32_t nv, const sq_remesh_result
     int k = 0;
     for (; k < 4 && !st; k++) {
         snprintf(path[k], sizeof path[k], "%s/%s", dir, names[k]);
+        if (k > 0 && !maps[k]->mesh.nv) { /* param's map, when the run started from one given */
+            path[k][0] = 0;
+            continue;
+        }
         st = k == 0 ? sq_cones_from_field_write(path[k], nv, R->valence, 1, err)
                     : sq_map_write_obj(path[k], maps[k], err);
     }
     if (st)
-        for (int j = 0; j < k - 1; j++) remove(path[j]);
+        for (int j = 0; j < k - 1; j++)
+            if (path[j][0]) remove(path[j]);
     return st;
 }
 
@@ -171,16 +182,20 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
     printf("mesh          %s: %u vertices, %u faces, genus %lld\n", mesh_path, m->nv, m->nf,
            (long long)sq_mesh_genus(m));
     printf("cones         %u (%s)\n", s->cones, s->cones_from_field ? "from a smooth cross field" : "given");
-    printf("param         %u faces (%u added vertices), attempt %u, %.2f s\n", s->param.faces_out,
-           s->param.steiner, s->param.attempts, s->t_param);
+    if (s->from_map)
+        printf("map           given: %u faces\n", s->optimize.faces_before);
+    else
+        printf("param         %u faces (%u added vertices), attempt %u, %.2f s\n", s->param.faces_out,
+               s->param.steiner, s->param.attempts, s->t_param);
     printf("optimize      mean conformal ratio %.4g -> %.4g, %u iterations (%u with progressive\n"
            "              references), %.2f s: %s\n",
            s->optimize.conformal_before, s->optimize.conformal_after, s->optimize.iterations,
            s->optimize.reference_iterations, s->t_optimize, s->optimize.why);
-    printf("simplify      %u rounds (%u with the translations fixed) removed %u added vertices:\n"
-           "              %u -> %u faces\n",
-           s->optimize.rounds, s->optimize.fixed_rounds, s->optimize.removed, s->optimize.faces_before,
-           s->optimize.faces_after);
+    if (!s->from_map)
+        printf("simplify      %u rounds (%u with the translations fixed) removed %u added vertices:\n"
+               "              %u -> %u faces\n",
+               s->optimize.rounds, s->optimize.fixed_rounds, s->optimize.removed, s->optimize.faces_before,
+               s->optimize.faces_after);
     printf("quantize      %.0f quads", s->quantize.quads);
     if (s->quantize.min_quads > 0 && s->quantize.quads > 0 && s->quantize.min_quads >= s->quantize.quads)
         printf(" (the fewest this layout allows)");
@@ -219,7 +234,8 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     if (m->nv)
         printf(",\n  \"mesh_vertices\": %u, \"mesh_faces\": %u, \"genus\": %lld", m->nv, m->nf,
                (long long)sq_mesh_genus(m));
-    printf(",\n  \"cones\": %u, \"cones_from_field\": %s", s->cones, s->cones_from_field ? "true" : "false");
+    printf(",\n  \"cones\": %u, \"cones_from_field\": %s, \"from_map\": %s", s->cones,
+           s->cones_from_field ? "true" : "false", s->from_map ? "true" : "false");
     printf(",\n  \"param\": {\"faces\": %u, \"steiner\": %u, \"attempts\": %u, \"seconds\": %.6f}",
            s->param.faces_out, s->param.steiner, s->param.attempts, s->t_param);
     printf(",\n  \"optimize\": {\"iterations\": %u, \"reference_iterations\": %u, \"rounds\": %u, "
@@ -265,6 +281,7 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
 int sq_cmd_remesh(int argc, char **argv)
 {
     const char *mesh_path = NULL, *out_path = NULL, *cones_path = NULL, *keep_dir = NULL, *picture = NULL;
+    const char *map_path = NULL;
     const char *step_path = NULL, *iges_path = NULL, *limit_path = NULL;
     int json = 0, quiet = 0, level = -1;
     sq_remesh_options opt;
@@ -279,7 +296,7 @@ int sq_cmd_remesh(int argc, char **argv)
             json = 1;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             quiet = 1;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones") ||
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones") || !strcmp(a, "--map") ||
                    !strcmp(a, "--quads") || !strcmp(a, "--edge-length") || !strcmp(a, "--iterations") ||
                    !strcmp(a, "--seed") || !strcmp(a, "--keep") || !strcmp(a, "--picture") ||
                    !strcmp(a, "--smooth") || !strcmp(a, "--step") || !strcmp(a, "--iges") ||
@@ -291,6 +308,7 @@ int sq_cmd_remesh(int argc, char **argv)
             const char *v = argv[++i];
             double x = 0;
             if (!strcmp(a, "--cones")) cones_path = v;
+            else if (!strcmp(a, "--map")) map_path = v;
             else if (!strcmp(a, "--keep")) keep_dir = v;
             else if (!strcmp(a, "--picture")) picture = v;
             else if (!strcmp(a, "--step")) step_path = v;
@@ -370,7 +388,8 @@ int sq_cmd_remesh(int argc, char **argv)
     const char *outs[NOUTS] = {out_path, picture, step_path, iges_path, limit_path};
     for (int k = 0; k < NOUTS; k++) {
         if (!outs[k]) continue;
-        if (!strcmp(outs[k], mesh_path) || (cones_path && !strcmp(outs[k], cones_path))) {
+        if (!strcmp(outs[k], mesh_path) || (cones_path && !strcmp(outs[k], cones_path)) ||
+            (map_path && !strcmp(outs[k], map_path))) {
             fprintf(stderr, "seamquad remesh: the output '%s' would overwrite an input\n", outs[k]);
             return SQ_EXIT_USAGE;
         }
@@ -427,6 +446,14 @@ int sq_cmd_remesh(int argc, char **argv)
         if (!valence) st = sq_error_set(&err, SQ_ERR_NOMEM, "out of memory");
         else st = sq_cli_read_cones(cones_path, &mesh, valence, &err);
     }
+    sq_map start;
+    memset(&start, 0, sizeof start);
+    if (!st && map_path) {
+        stage = "map";
+        st = sq_map_read(map_path, &mesh, valence, 1e-9, 0, &start, NULL, &err);
+        if (st) sq_cli_name_file(&err, map_path);
+        opt.map = &start;
+    }
     if (!st) {
         st = sq_remesh(&mesh, valence, &opt, &R, &s, &err);
         if (st) stage = s.stage ? s.stage : "remesh";
@@ -470,6 +497,7 @@ int sq_cmd_remesh(int argc, char **argv)
     else if (!st && !quiet) print_text(mesh_path, out_path, &mesh, &R, &s, &surf);
     if (st) fprintf(stderr, "seamquad remesh: error (%s): %s\n", stage, err.msg);
     free(valence);
+    sq_map_free(&start);
     surface_free(&surf);
     sq_remesh_result_free(&R);
     sq_mesh_free(&mesh);

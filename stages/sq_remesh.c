@@ -211,17 +211,27 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     sq_remesh_stats local;
     if (!stats) stats = &local;
     memset(stats, 0, sizeof *stats);
-    if (!m || !opt || !out) return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_remesh: NULL argument");
+    sq_map M, igm;
+    memset(&M, 0, sizeof M);
+    memset(&igm, 0, sizeof igm);
+    if (opt && opt->map) { /* taken over whatever happens next */
+        M = *opt->map;
+        memset(opt->map, 0, sizeof *opt->map);
+    }
+    if (!m || !opt || !out) {
+        sq_map_free(&M);
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_remesh: NULL argument");
+    }
     memset(out, 0, sizeof *out);
-    if (opt->quads < 0 || opt->edge_length < 0 || (opt->quads > 0 && opt->edge_length > 0))
+    if (opt->quads < 0 || opt->edge_length < 0 || (opt->quads > 0 && opt->edge_length > 0)) {
+        sq_map_free(&M);
         return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_remesh: give a quad count or an edge length, not both");
+    }
     double t0 = sq_now();
     progress_ctx pc = {opt, "cones", 0, 0, 0, 0};
     sq_param P;
     sq_param_init(&P);
-    sq_map M, igm;
-    memset(&M, 0, sizeof M);
-    memset(&igm, 0, sizeof igm);
+
     double *raw = NULL; /* the quads' unsmoothed positions (stage 7) */
     sq_status st = SQ_OK;
 
@@ -232,7 +242,21 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (cones)");
         goto fail;
     }
-    if (valence) {
+    if (M.mesh.nv) { /* the caller's map: its cones, checked against those given */
+        stats->from_map = 1;
+        if (M.mesh.nv < m->nv) {
+            st = sq_error_set(err, SQ_ERR_ARGUMENT, "the map has %u vertices, fewer than the mesh's %u",
+                              M.mesh.nv, m->nv);
+            goto fail;
+        }
+        memcpy(out->valence, M.valence, (size_t)m->nv * sizeof *out->valence);
+        for (uint32_t v = 0; v < M.mesh.nv && !st; v++)
+            if (v >= m->nv ? M.valence[v] != 4 : valence && valence[v] != M.valence[v])
+                st = sq_error_set(err, SQ_ERR_ARGUMENT,
+                                  "the map's angle sum at vertex %u makes a cone of valence %d, the cones "
+                                  "given say %d",
+                                  v, (int)M.valence[v], v >= m->nv ? 4 : (int)valence[v]);
+    } else if (valence) {
         memcpy(out->valence, valence, (size_t)m->nv * sizeof *valence);
         st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
         if (!st) st = sq_cones_check_realizable(m->nv, valence, sq_mesh_genus(m), err);
@@ -248,6 +272,7 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
 
     /* 2. param (seed 7-9) */
     double t1 = sq_now();
+    if (stats->from_map) goto optimize;
     begin(&pc, stats, "param", SHARE_PARAM);
     sq_param_options po;
     sq_param_options_default(&po);
@@ -259,17 +284,33 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     stats->t_param = sq_now() - t1;
     if (st) goto fail;
 
-    /* 3 and 4. the map, exact, optimized and simplified in rounds */
+    /* 3 and 4. the map, exact, optimized and simplified in rounds (the
+     * caller's map: optimized whole, it has no added vertices to remove) */
+optimize:
     t1 = sq_now();
     begin(&pc, stats, "optimize", SHARE_OPTIMIZE);
-    if (opt->keep_maps && (st = sq_remesh_param_map(&P, m, out->valence, &out->map, err))) goto fail;
+    if (opt->keep_maps && !stats->from_map && (st = sq_remesh_param_map(&P, m, out->valence, &out->map, err)))
+        goto fail;
     sq_optimize_options oo;
     memset(&oo, 0, sizeof oo);
     oo.basis = SQ_OPTIMIZE_FREE_TRANSLATIONS;
     pc.iterations = opt->optimize_iterations ? opt->optimize_iterations : SQ_REMESH_ITERATIONS;
     oo.progress = optimize_progress;
     oo.user = &pc;
-    st = sq_remesh_optimize(m, out->valence, &P, &oo, pc.iterations, &M, &stats->optimize, err);
+    if (stats->from_map) {
+        sq_remesh_optimize_report *rep = &stats->optimize;
+        rep->conformal_before = sq_remesh_conformal_mean(&M);
+        rep->faces_before = rep->faces_after = M.mesh.nf;
+        oo.max_iterations = pc.iterations;
+        sq_optimize_report r;
+        st = sq_optimize_map(&M, &oo, &r, err);
+        rep->iterations = r.iterations;
+        rep->reference_iterations = r.reference_iterations;
+        memcpy(rep->why, r.why, sizeof rep->why);
+        rep->conformal_after = sq_remesh_conformal_mean(&M);
+    } else {
+        st = sq_remesh_optimize(m, out->valence, &P, &oo, pc.iterations, &M, &stats->optimize, err);
+    }
     sq_param_free(&P);
     stats->t_optimize = sq_now() - t1;
     if (st) goto fail;

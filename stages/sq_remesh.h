@@ -70,6 +70,13 @@ typedef struct sq_remesh_options {
     uint32_t attempts;             /* param's attempts (0: 4)                */
     int keep_maps;                 /* 1: the result keeps the three maps     */
     int no_smoothing;              /* 1: skip stage 7                        */
+    sq_map *map;                   /* NULL, or a seamless map of the mesh to */
+                                   /* start from (sq_map_read: exact): its   */
+                                   /* cones are the run's, stages 1 and 2    */
+                                   /* are skipped and stage 4 optimizes it   */
+                                   /* whole (no simplification rounds).      */
+                                   /* sq_remesh takes it over: freed and     */
+                                   /* zeroed, whatever the outcome           */
     /* progress (may be NULL): the stage and the fraction of the whole run */
     void (*progress)(void *user, const char *stage, double fraction);
     void *user;
@@ -92,6 +99,7 @@ typedef struct sq_remesh_optimize_report {
 typedef struct sq_remesh_stats {
     const char *stage;             /* the stage running, or that failed      */
     int cones_from_field;          /* 1: stage 1 computed the cones          */
+    int from_map;                  /* 1: started from the caller's map       */
     uint32_t cones;                /* vertices of valence != 4               */
     sq_cones_from_field_stats field;
     sq_param_stats param;

@@ -13,6 +13,9 @@
 #    map stays too distorted: quads folded (extract) or through the thin
 #    shell (verify); the run fails at that stage, names the cause and
 #    writes nothing (docs/remesh.md);
+#  - --map: mpz/knot1's published map (its vt) instead of param's passes the
+#    same checks; a map of another mesh, without vt, or with other cones
+#    than --cones is refused;
 #  - --picture writes an SVG view of the quads;
 #  - --keep DIR writes the cones, param's map, the optimized map and the
 #    integer-grid map, which check_param.py passes (the last with --integer);
@@ -109,6 +112,18 @@ mkdir -p "$tmp/keep_cube_field"
 remeshes cube_field "$cube" - 1000 8 --keep "$tmp/keep_cube_field"
 remeshes eight "$shared/data/mpz/eight.obj" "$shared/data/mpz/eight_Th_hat" 5000 3 --keep "$tmp/keep_eight" \
   --picture "$tmp/eight.svg"
+# --map: the published map stored in knot1.obj (its vt) instead of param's;
+# --keep then writes no map.obj (the map was given)
+mkdir -p "$tmp/keep_knot1_map"
+remeshes knot1_map "$shared/data/mpz/knot1.obj" "$shared/data/mpz/knot1_Th_hat" 2000 3 \
+  --map "$shared/data/mpz/knot1.obj" --keep "$tmp/keep_knot1_map"
+if python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["from_map"] and j["param"]["faces"] == 0, j' \
+    "$tmp/knot1_map.json" 2>"$tmp/km.err" && [ ! -e "$tmp/keep_knot1_map/map.obj" ] \
+    && [ -s "$tmp/keep_knot1_map/optimized.obj" ]; then
+  ok; echo "PASS --map: from_map in --json, no param stage, --keep without map.obj"
+else
+  bad "--map: $(cat "$tmp/km.err") $(ls "$tmp/keep_knot1_map")"
+fi
 # the picture: an SVG of the quads facing the viewer (about half of them)
 nq=$(grep -c '^f ' "$tmp/eight.obj" 2>/dev/null || echo 0)
 np=$(grep -c '<polygon' "$tmp/eight.svg" 2>/dev/null || echo 0)
@@ -225,6 +240,21 @@ refused "--level without --limit" 2 "give --limit" "$cube" --level 2 -o "$tmp/e/
 refused "--level 9" 2 "from 0 to 8" "$cube" --level 9 --limit "$tmp/e/l.obj" -o "$tmp/e/q.obj"
 refused "--limit .ply" 2 "must be an .obj" "$cube" --limit "$tmp/e/l.ply" -o "$tmp/e/q.obj"
 refused "one file for two outputs" 2 "two outputs" "$cube" --step "$tmp/e/q.obj" -o "$tmp/e/q.obj"
+refused "--map of another mesh" 1 "not a map of the input mesh" "$shared/data/mpz/eight.obj" \
+  --map "$shared/data/mpz/knot1.obj" -o "$tmp/e/q.obj"
+refused "--map without vt" 1 "no texture coordinates" "$cube" --map "$cube" -o "$tmp/e/q.obj"
+# knot1's cones with one moved: its angle swapped with a regular vertex's
+python3 - "$shared/data/mpz/knot1_Th_hat" "$tmp/moved_Th_hat" <<'PY'
+import math, sys
+a = [l for l in open(sys.argv[1]) if l.strip()]
+c = next(i for i, l in enumerate(a) if abs(float(l) - 2 * math.pi) > 1e-9)
+r = next(i for i, l in enumerate(a) if abs(float(l) - 2 * math.pi) <= 1e-9)
+a[c], a[r] = a[r], a[c]
+open(sys.argv[2], "w").write("".join(a))
+PY
+refused "--map and other cones" 1 "the map does not have these cones" "$shared/data/mpz/knot1.obj" \
+  --map "$shared/data/mpz/knot1.obj" --cones "$tmp/moved_Th_hat" -o "$tmp/e/q.obj"
+refused "--map = output" 2 "would overwrite" "$cube" --map "$tmp/e/q.obj" -o "$tmp/e/q.obj"
 if "$bin" remesh --help | grep -q "Guarantees of QUADS.obj"; then ok; else bad "--help"; fi
 
 echo "cli_remesh: $pass passed, $fail failed"
