@@ -46,7 +46,9 @@ static void help(FILE *f)
             "            fail verify\n"
             "  verify    the quads, each split along its shorter diagonal, must not\n"
             "            intersect each other where the input does not intersect\n"
-            "            itself (CGAL's exact test); if they do, the run fails\n"
+            "            itself (CGAL's exact test); where they do, the vertices of\n"
+            "            the quads involved are relaxed on MESH (cones excepted, no\n"
+            "            quad folded) for up to 20 rounds; any pair left fails the run\n"
             "  export    with --step, --iges or --limit: the quads' Catmull-Clark\n"
             "            surface (OpenSubdiv) as B-spline patches or a limit mesh, as\n"
             "            `seamquad subdiv` writes them\n"
@@ -216,6 +218,10 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
            "              every vertex on the surface, no quad folded; %llu intersecting triangle\n"
            "              pairs (CGAL, each quad split along its shorter diagonal), %.2f s\n",
            (unsigned long long)s->self_intersections, s->t_verify);
+    if (s->repaired)
+        printf("repaired      %llu intersecting pairs removed by relaxing their quads on the surface\n"
+               "              (%u rounds)\n",
+               (unsigned long long)s->repaired, s->repair_rounds);
     if (surf->S.np)
         printf("export        %u B-spline patches of the Catmull-Clark surface, %.2f s\n", surf->S.np,
                surf->seconds);
@@ -264,8 +270,10 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     sq_json_string(stdout, s->smooth_why);
     printf(", \"seconds\": %.6f}", s->t_smooth);
     if (surf->S.np) printf(",\n  \"export\": {\"patches\": %u, \"seconds\": %.6f}", surf->S.np, surf->seconds);
-    printf(",\n  \"verify\": {\"self_intersections\": %llu, \"input_self_intersections\": %lld, \"seconds\": %.6f}",
-           (unsigned long long)s->self_intersections, (long long)s->input_self_intersections, s->t_verify);
+    printf(",\n  \"verify\": {\"self_intersections\": %llu, \"input_self_intersections\": %lld, "
+           "\"repaired\": %llu, \"repair_rounds\": %u, \"seconds\": %.6f}",
+           (unsigned long long)s->self_intersections, (long long)s->input_self_intersections,
+           (unsigned long long)s->repaired, s->repair_rounds, s->t_verify);
     printf(",\n  \"time_s\": {\"cones\": %.6f, \"param\": %.6f, \"optimize\": %.6f, "
            "\"quantize\": %.6f, \"extract\": %.6f, \"smooth\": %.6f, \"verify\": %.6f, "
            "\"export\": %.6f, \"total\": %.6f}",

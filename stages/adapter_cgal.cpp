@@ -18,7 +18,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using Face = Mesh::Face_index;
 
-// An output iterator that counts the pairs and keeps the first.
+// An output iterator that counts the pairs and keeps the first cap of them.
 struct pair_counter {
     using iterator_category = std::output_iterator_tag;
     using value_type = void;
@@ -26,13 +26,14 @@ struct pair_counter {
     using pointer = void;
     using reference = void;
     uint64_t *n;
-    uint32_t *first;
+    uint32_t *list;
+    uint32_t cap;
     pair_counter &operator*() { return *this; }
     pair_counter &operator++() { return *this; }
     pair_counter operator++(int) { return *this; }
     pair_counter &operator=(const std::pair<Face, Face> &p)
     {
-        if (*n == 0 && first) first[0] = uint32_t(p.first), first[1] = uint32_t(p.second);
+        if (list && *n < cap) list[2 * *n] = uint32_t(p.first), list[2 * *n + 1] = uint32_t(p.second);
         ++*n;
         return *this;
     }
@@ -41,7 +42,7 @@ struct pair_counter {
 } // namespace
 
 extern "C" sq_status sq_cgal_self_intersections(uint32_t nv, const double *pos, uint32_t nt, const uint32_t *tri,
-                                                 uint64_t *pairs, uint32_t first[2], sq_error *err)
+                                                 uint64_t *pairs, uint32_t *list, uint32_t cap, sq_error *err)
 {
     *pairs = 0;
     try {
@@ -56,7 +57,7 @@ extern "C" sq_status sq_cgal_self_intersections(uint32_t nv, const double *pos, 
             // faces are numbered in the order they are added
         }
         uint64_t n = 0;
-        CGAL::Polygon_mesh_processing::self_intersections(m, pair_counter{&n, first});
+        CGAL::Polygon_mesh_processing::self_intersections(m, pair_counter{&n, list, cap});
         *pairs = n;
         return SQ_OK;
     } catch (const std::bad_alloc &) {

@@ -19,10 +19,11 @@ extern "C" {
 
 /* The number of intersecting triangle pairs of the mesh (pos: 3 nv, tri:
  * 3 nt vertex indices; an oriented manifold, closed or not) in *pairs, and
- * the first pair found in first[0..1] (may be NULL; untouched when there is
- * none). SQ_ERR_ARGUMENT if CGAL cannot build the mesh (not manifold). */
+ * the first min(cap, *pairs) pairs found in list (2 triangle indices each;
+ * list may be NULL). SQ_ERR_ARGUMENT if CGAL cannot build the mesh (not
+ * manifold). */
 sq_status sq_cgal_self_intersections(uint32_t nv, const double *pos, uint32_t nt, const uint32_t *tri,
-                                     uint64_t *pairs, uint32_t first[2], sq_error *err);
+                                     uint64_t *pairs, uint32_t *list, uint32_t cap, sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -102,52 +102,7 @@ static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_e
 {
     uint32_t *tri = mesh_triangles(m);
     if (!tri) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
-    sq_status st = sq_cgal_self_intersections(m->nv, m->pos, m->nf, tri, pairs, NULL, err);
-    free(tri);
-    return st;
-}
-
-/* The quads' intersecting triangle pairs, each quad split along its
- * shorter diagonal (as the referee splits them), or along the other where
- * the shorter one is already an edge of the quads or another quad's
- * diagonal: two quads that share two opposite corners (beside a cone of
- * high valence: mpz/helmet's) would otherwise give one edge four
- * triangles, which the test cannot take. */
-static sq_status quads_self_intersections(const sq_quad_mesh *Q, uint64_t *pairs, sq_error *err)
-{
-    uint32_t *tri = malloc(6 * ((size_t)Q->nq + 1) * sizeof *tri);
-    sq_edge_hash H;
-    if (!tri || sq_edge_hash_init(&H, 4 * (size_t)Q->nq) != 0) { /* edges, both diagonals */
-        free(tri);
-        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
-    }
-    for (size_t i = 0; i < 4 * (size_t)Q->nq; i++) {
-        const uint32_t a = Q->quad[i], b = Q->quad[i % 4 == 3 ? i - 3 : i + 1];
-        H.val[sq_edge_hash_slot(&H, a < b ? a : b, a < b ? b : a)] = 1;
-    }
-    for (uint32_t q = 0; q < Q->nq; q++) {
-        const uint32_t *c = Q->quad + 4 * (size_t)q;
-        double d02 = 0, d13 = 0;
-        for (int i = 0; i < 3; i++) {
-            double a = Q->pos[3 * (size_t)c[2] + i] - Q->pos[3 * (size_t)c[0] + i];
-            double b = Q->pos[3 * (size_t)c[3] + i] - Q->pos[3 * (size_t)c[1] + i];
-            d02 += a * a, d13 += b * b;
-        }
-        int k = d02 <= d13 ? 0 : 1; /* the diagonal from corner k to k + 2 */
-        size_t slot[2];
-        for (int j = 0; j < 2; j++) {
-            const uint32_t a = c[j], b = c[j + 2];
-            slot[j] = sq_edge_hash_slot(&H, a < b ? a : b, a < b ? b : a);
-        }
-        /* both taken: the shorter, and the test names the triangle */
-        if (H.val[slot[k]] != SQ_NONE && H.val[slot[1 - k]] == SQ_NONE) k = 1 - k;
-        H.val[slot[k]] = 1;
-        uint32_t *t = tri + 6 * (size_t)q;
-        t[0] = c[k], t[1] = c[k + 1], t[2] = c[(k + 2) % 4];
-        t[3] = c[k], t[4] = c[(k + 2) % 4], t[5] = c[(k + 3) % 4];
-    }
-    sq_edge_hash_free(&H);
-    sq_status st = sq_cgal_self_intersections(Q->nv, Q->pos, 2 * Q->nq, tri, pairs, NULL, err);
+    sq_status st = sq_cgal_self_intersections(m->nv, m->pos, m->nf, tri, pairs, NULL, 0, err);
     free(tri);
     return st;
 }
@@ -357,7 +312,7 @@ optimize:
     /* 8. no quad surface through itself where the input is not */
     t1 = sq_now();
     begin(&pc, stats, "verify", 1.0 - pc.base - pc.share);
-    st = quads_self_intersections(&out->quads, &stats->self_intersections, err);
+    st = sq_remesh_quad_intersections(&out->quads, &stats->self_intersections, NULL, 0, err);
     stats->input_self_intersections = -1;
     stats->t_verify = sq_now() - t1;
     if (st) goto fail;
@@ -366,7 +321,7 @@ optimize:
         double *smoothed = out->quads.pos;
         uint64_t pairs = 0;
         out->quads.pos = raw;
-        st = quads_self_intersections(&out->quads, &pairs, err);
+        st = sq_remesh_quad_intersections(&out->quads, &pairs, NULL, 0, err);
         if (st) {
             out->quads.pos = smoothed;
             goto fail;
@@ -389,13 +344,21 @@ optimize:
         stats->t_verify = sq_now() - t1;
         if (st) goto fail;
         stats->input_self_intersections = (int64_t)in;
-        if (in == 0) {
+        if (in == 0) { /* the quads around the intersections relaxed on the surface */
+            uint64_t left = 0;
+            st = sq_remesh_repair_intersections(m, &out->quads, &left, &stats->repair_rounds, err);
+            stats->t_verify = sq_now() - t1;
+            if (st) goto fail;
+            stats->repaired = stats->self_intersections - left;
+            stats->self_intersections = left;
+        }
+        if (in == 0 && stats->self_intersections > 0) {
             st = sq_error_set(err, SQ_ERR_SOLVER,
-                              "%llu pairs of the quads' triangles intersect (the quad surface passes "
-                              "through itself where the input does not: quads too skewed for the "
-                              "surface's thin parts or near the cones); more optimizer iterations "
-                              "may help",
-                              (unsigned long long)stats->self_intersections);
+                              "%llu pairs of the quads' triangles intersect after %u rounds of "
+                              "relaxing them on the surface (the quad surface passes through itself "
+                              "where the input does not: quads too skewed for the surface's thin "
+                              "parts or near the cones); more optimizer iterations may help",
+                              (unsigned long long)stats->self_intersections, stats->repair_rounds);
             goto fail;
         }
     }

@@ -22,7 +22,9 @@
  *     fails or its result fails the verify stage where theirs passes;
  *  8. verify: the quad surface (each quad split along its shorter
  *     diagonal) must not intersect itself where the input does not
- *     (CGAL's exact test, sq_cgal_adapter.h), and no quad may be folded,
+ *     (CGAL's exact test, sq_cgal_adapter.h; where it does, the quads
+ *     involved are relaxed on the surface first, sq_remesh_repair.c), and
+ *     no quad may be folded,
  *     have an edge shorter than 1e-12 of the diagonal or an area below
  *     1e-12 of its square (sq_quad_mesh_check_shapes); else the run fails.
  *
@@ -118,6 +120,8 @@ typedef struct sq_remesh_stats {
     int64_t input_self_intersections; /* the input's, when the quads have    */
                                    /* some (-1: not computed)                */
     double t_verify;               /* the self-intersection test             */
+    uint64_t repaired;             /* intersecting pairs the repair removed  */
+    uint32_t repair_rounds;        /* its rounds (0: nothing to repair)      */
     double t_cones, t_param, t_optimize, t_quantize, t_extract, t_smooth, t_total; /* stage 3 in t_optimize */
 } sq_remesh_stats;
 
@@ -152,6 +156,21 @@ sq_status sq_remesh_param_map(const sq_param *P, const sq_mesh *m, const int32_t
 sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param *P,
                              const sq_optimize_options *base, uint32_t budget, sq_map *M,
                              sq_remesh_optimize_report *rep, sq_error *err);
+
+/* The quads' intersecting triangle pairs (CGAL), each quad split along its
+ * shorter diagonal as the referee splits it: the count in *pairs and the
+ * first min(cap, *pairs) pairs as quad indices in list (may be NULL)
+ * (sq_remesh_repair.c). */
+sq_status sq_remesh_quad_intersections(const sq_quad_mesh *Q, uint64_t *pairs, uint32_t *list, uint32_t cap,
+                                       sq_error *err);
+
+/* Stage 8's repair (sq_remesh_repair.c): the vertices of intersecting
+ * quads and, round by round, their rings (cones excepted) relaxed on m's
+ * surface; Q->pos ends with the fewest pairs found (*pairs), after
+ * *rounds rounds (at most 20). Connectivity unchanged; no move folds a
+ * quad that was not folded. */
+sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint64_t *pairs, uint32_t *rounds,
+                                         sq_error *err);
 
 /* The area-weighted mean conformal ratio sigma1/sigma2 of a map (the
  * referee's figure; triangles of zero area on the surface left out). */
