@@ -269,7 +269,7 @@ rc0=$?
   --interior cells --quiet >"$tmp/h1.json" 2>"$tmp/h1.err"
 rc1=$?
 "$bin" param "$helmet" --cones "$shared/data/mpz/helmet_Th_hat" -o "$tmp/h2.obj" --attempts 1 \
-  --interior cells --quiet >"$tmp/h2.txt" 2>/dev/null
+  --interior cells >"$tmp/h2.txt" 2>/dev/null
 if [ $rc0 -eq 3 ] && grep -q "not injective in floating point" "$tmp/h0.err" && [ ! -e "$tmp/h0.obj" ] \
     && [ $rc1 -eq 0 ] && grep -q "^refinement  *[0-9]* rounds" "$tmp/h2.txt" \
     && python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["refine_rounds"]>=1 and j["cells_halved"]>=j["refine_rounds"] and j["attempts"]==1 and j["cells"]==j["chords"]+1, j' "$tmp/h1.json" \
