@@ -72,7 +72,7 @@ static void help(FILE *f)
             "                       `seamquad quantize --map` takes it: made exact or\n"
             "                       refused); its cones are the run's (with --cones they\n"
             "                       must agree); optimize runs on it whole\n"
-"  --quads N            about N quads (default 5000; 1 <= N <= 1e8); below the\n"
+            "  --quads N            about N quads (default 5000; 1 <= N <= 1e8); below the\n"
             "                       fewest the cones' layout allows, that fewest\n"
             "  --edge-length L      quad edges of about L on the surface instead\n"
             "  --smooth on|off      the smoothing stage (default on)\n"

@@ -23,7 +23,6 @@
 
 #include "sq_clock.h"
 #include "sq_cgal_adapter.h"
-#include "sq_edge_hash.h"
 #include "sq_cones.h"
 
 /* The share of the whole run each stage is given in the progress report
