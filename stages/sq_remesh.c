@@ -185,7 +185,6 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     progress_ctx pc = {opt, "cones", 0, 0, 0, 0};
     sq_param P;
     sq_param_init(&P);
-
     double *raw = NULL; /* the quads' unsmoothed positions (stage 7) */
     sq_status st = SQ_OK;
 
