@@ -517,3 +517,14 @@ double sq_bbox_diagonal(uint32_t nv, const double *pos)
     if (!nv) return 0.0;
     return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
+
+uint32_t *sq_mesh_triangles(const sq_mesh *m)
+{
+    uint32_t *tri = malloc(3 * ((size_t)m->nf + 1) * sizeof *tri);
+    if (!tri) return NULL;
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h = m->f_he[f];
+        for (int c = 0; c < 3; c++, h = m->he_next[h]) tri[3 * (size_t)f + c] = m->he_vert[h];
+    }
+    return tri;
+}

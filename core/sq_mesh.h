@@ -59,6 +59,10 @@ uint32_t sq_mesh_vertex_valence(const sq_mesh *m, uint32_t v);
  * coordinates): the scale the referees' tolerances are relative to. */
 double sq_bbox_diagonal(uint32_t nv, const double *pos);
 
+/* The triangles of the triangle mesh m as 3 nf vertex indices, each face's
+ * corners from f_he[f] on (malloc'ed; NULL when out of memory). */
+uint32_t *sq_mesh_triangles(const sq_mesh *m);
+
 #ifdef __cplusplus
 }
 #endif

@@ -27,18 +27,6 @@
 
 #define SQ_UNTANGLE_ROUNDS 60
 
-static double worst_margin(const sq_quad_mesh *Q, const uint32_t *vq_off, const uint32_t *vq, uint32_t v)
-{
-    double m = 2.0;
-    for (uint32_t k = vq_off[v]; k < vq_off[v + 1]; k++) {
-        const uint32_t *q = Q->quad + 4 * (size_t)vq[k];
-        double x = sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1],
-                                       Q->pos + 3 * (size_t)q[2], Q->pos + 3 * (size_t)q[3]);
-        if (x < m) m = x;
-    }
-    return m;
-}
-
 static int folded(const sq_quad_mesh *Q, uint32_t f)
 {
     const uint32_t *q = Q->quad + 4 * (size_t)f;
@@ -56,44 +44,20 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
     for (uint32_t f = 0; f < nq; f++) stats->folded_before += folded(Q, f);
     stats->folded_after = stats->folded_before;
     if (!stats->folded_before) return SQ_OK;
-    uint32_t *tri = malloc(3 * ((size_t)m->nf + 1) * sizeof *tri);
-    uint32_t *vq_off = calloc((size_t)nv + 1, sizeof *vq_off), *vq = malloc(4 * ((size_t)nq + 1) * sizeof *vq);
-    uint32_t *nb_off = calloc((size_t)nv + 1, sizeof *nb_off), *nb = malloc(4 * ((size_t)nq + 1) * sizeof *nb);
+    uint32_t *tri = sq_mesh_triangles(m);
     uint8_t *mark = calloc(nv, 1), *next = calloc(nv, 1);
+    sq_quad_star S = {NULL, NULL, NULL};
     sq_cp_tree tree;
     memset(&tree, 0, sizeof tree);
     sq_status st = SQ_OK;
-    if (!tri || !vq_off || !vq || !nb_off || !nb || !mark || !next) {
+    if (!tri || !mark || !next) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (untangling %u quads)", nq);
         goto done;
     }
-    for (uint32_t f = 0; f < m->nf; f++) {
-        uint32_t h = m->f_he[f];
-        for (int k = 0; k < 3; k++, h = m->he_next[h]) tri[3 * (size_t)f + k] = m->he_vert[h];
-    }
     if ((st = sq_cp_tree_build(m->nv, m->pos, m->nf, tri, &tree, err))) goto done;
-    /* quads around each vertex; edge neighbours (each quad edge once from
-     * each side: the mesh is closed and manifold) */
-    for (uint32_t f = 0; f < nq; f++)
-        for (int k = 0; k < 4; k++) vq_off[Q->quad[4 * (size_t)f + k] + 1]++, nb_off[Q->quad[4 * (size_t)f + k] + 1]++;
-    for (uint32_t v = 0; v < nv; v++) vq_off[v + 1] += vq_off[v], nb_off[v + 1] += nb_off[v];
-    {
-        uint32_t *fa = malloc(((size_t)nv + 1) * sizeof *fa), *fb = malloc(((size_t)nv + 1) * sizeof *fb);
-        if (!fa || !fb) {
-            free(fa), free(fb);
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (untangling %u quads)", nq);
-            goto done;
-        }
-        memcpy(fa, vq_off, (size_t)nv * sizeof *fa);
-        memcpy(fb, nb_off, (size_t)nv * sizeof *fb);
-        for (uint32_t f = 0; f < nq; f++)
-            for (int k = 0; k < 4; k++) {
-                uint32_t v = Q->quad[4 * (size_t)f + k];
-                vq[fa[v]++] = f;
-                nb[fb[v]++] = Q->quad[4 * (size_t)f + (k + 1) % 4]; /* the next corner: each edge once per side */
-            }
-        free(fa), free(fb);
-    }
+    /* quads around each vertex; edge neighbours (S.next: each quad edge
+     * once from each side, the mesh being closed and manifold) */
+    if ((st = sq_quad_star_build(nv, nq, Q->quad, &S, err))) goto done;
     for (uint32_t f = 0; f < nq; f++)
         if (folded(Q, f))
             for (int k = 0; k < 4; k++) mark[Q->quad[4 * (size_t)f + k]] = 1;
@@ -101,29 +65,29 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
         uint32_t moved = 0;
         for (uint32_t v = 0; v < nv; v++) {
             if (!mark[v] || Q->valence[v] != 4) continue;
-            double cur = worst_margin(Q, vq_off, vq, v), old[3];
+            double cur = sq_quad_star_worst_margin(&S, Q->pos, Q->quad, v), old[3];
             if (cur >= 0.5) continue;
             memcpy(old, Q->pos + 3 * (size_t)v, sizeof old);
             /* candidate targets: the mean of the edge neighbours, the mean
              * of the quads' corners around v, then each edge neighbour */
-            uint32_t deg = nb_off[v + 1] - nb_off[v], nquad = vq_off[v + 1] - vq_off[v], ncand = 2 + deg + nquad;
+            uint32_t o = S.off[v], deg = S.off[v + 1] - o, ncand = 2 + 2 * deg;
             double best = cur, best_p[3] = {0, 0, 0}, best_bary[3] = {0, 0, 0};
             uint32_t best_tri = UINT32_MAX;
             for (uint32_t c = 0; c < ncand; c++) {
                 double tgt[3] = {0, 0, 0};
                 if (c == 0) {
-                    for (uint32_t k = nb_off[v]; k < nb_off[v + 1]; k++)
-                        for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)nb[k] + i] / deg;
+                    for (uint32_t k = o; k < o + deg; k++)
+                        for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)S.next[k] + i] / deg;
                 } else if (c == 1) {
                     uint32_t n = 0;
-                    for (uint32_t k = vq_off[v]; k < vq_off[v + 1]; k++)
+                    for (uint32_t k = o; k < o + deg; k++)
                         for (int j = 0; j < 4; j++, n++)
-                            for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)Q->quad[4 * (size_t)vq[k] + j] + i];
+                            for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)Q->quad[4 * (size_t)S.quad[k] + j] + i];
                     for (int i = 0; i < 3; i++) tgt[i] /= n;
                 } else if (c < 2 + deg) {
-                    memcpy(tgt, Q->pos + 3 * (size_t)nb[nb_off[v] + c - 2], sizeof tgt);
+                    memcpy(tgt, Q->pos + 3 * (size_t)S.next[o + c - 2], sizeof tgt);
                 } else { /* the corner that makes quad k a parallelogram */
-                    const uint32_t *q = Q->quad + 4 * (size_t)vq[vq_off[v] + c - 2 - deg];
+                    const uint32_t *q = Q->quad + 4 * (size_t)S.quad[o + c - 2 - deg];
                     int j = 0;
                     while (q[j] != v) j++;
                     for (int i = 0; i < 3; i++)
@@ -136,7 +100,7 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
                     sq_cp_hit hit;
                     sq_cp_tree_query(&tree, p, &hit);
                     memcpy(Q->pos + 3 * (size_t)v, hit.point, sizeof hit.point);
-                    double w = worst_margin(Q, vq_off, vq, v);
+                    double w = sq_quad_star_worst_margin(&S, Q->pos, Q->quad, v);
                     memcpy(Q->pos + 3 * (size_t)v, old, sizeof old);
                     if (w > best) {
                         best = w, best_tri = hit.tri;
@@ -174,12 +138,13 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
         if (!moved)
             for (uint32_t v = 0; v < nv; v++)
                 if (mark[v])
-                    for (uint32_t k = nb_off[v]; k < nb_off[v + 1]; k++) next[nb[k]] = 1;
+                    for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++) next[S.next[k]] = 1;
         uint8_t *t = mark;
         mark = next, next = t;
     }
 done:
     sq_cp_tree_free(&tree);
-    free(tri), free(vq_off), free(vq), free(nb_off), free(nb), free(mark), free(next);
+    sq_quad_star_free(&S);
+    free(tri), free(mark), free(next);
     return st;
 }

@@ -1,26 +1,7 @@
 /* seamquad: the shapes of a quad mesh's quads, judged as the referee
  * judges them (sq_extract.h, step 6). */
-#include <math.h>
-
 #include "sq_extract.h"
 #include "sq_smooth.h"
-
-static void sub3(const double *a, const double *b, double *c)
-{
-    for (int i = 0; i < 3; i++) c[i] = a[i] - b[i];
-}
-
-static void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double norm3(const double *a)
-{
-    return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-}
 
 sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, double diag, sq_quad_shapes *out, sq_error *err)
 {
@@ -30,12 +11,8 @@ sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, double diag, sq_quad_
         const uint32_t *q = Q->quad + 4 * (size_t)f;
         const double *p[4];
         for (int k = 0; k < 4; k++) p[k] = Q->pos + 3 * (size_t)q[k];
-        double e[4][3], d02[3], d03[3], d13[3], n012[3], n023[3], n013[3], n123[3];
-        for (int k = 0; k < 4; k++) sub3(p[(k + 1) % 4], p[k], e[k]);
-        sub3(p[2], p[0], d02), sub3(p[3], p[0], d03), sub3(p[3], p[1], d13);
-        cross3(e[0], d02, n012), cross3(d02, d03, n023), cross3(e[0], d03, n013), cross3(e[1], d13, n123);
-        double area = 0.25 * (norm3(n012) + norm3(n023) + norm3(n013) + norm3(n123));
-        double lmin = fmin(fmin(norm3(e[0]), norm3(e[1])), fmin(norm3(e[2]), norm3(e[3])));
+        double area, lmin;
+        sq_quad_size(p[0], p[1], p[2], p[3], &area, &lmin);
         if (!(lmin > eps_len)) {
             if (!s.short_edge++) s.first_short_edge = f;
         } else if (!(area > eps_area)) {

@@ -84,22 +84,10 @@ static void begin(progress_ctx *pc, sq_remesh_stats *stats, const char *stage, d
     report(pc, 0);
 }
 
-/* The triangles of the triangle mesh m, 3 nf indices (malloc'ed), or NULL. */
-static uint32_t *mesh_triangles(const sq_mesh *m)
-{
-    uint32_t *tri = malloc(3 * ((size_t)m->nf + 1) * sizeof *tri);
-    if (!tri) return NULL;
-    for (uint32_t f = 0; f < m->nf; f++) {
-        uint32_t h = m->f_he[f];
-        for (int c = 0; c < 3; c++, h = m->he_next[h]) tri[3 * f + c] = m->he_vert[h];
-    }
-    return tri;
-}
-
 /* The triangle mesh m's intersecting triangle pairs (CGAL). */
 static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_error *err)
 {
-    uint32_t *tri = mesh_triangles(m);
+    uint32_t *tri = sq_mesh_triangles(m);
     if (!tri) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
     sq_status st = sq_cgal_self_intersections(m->nv, m->pos, m->nf, tri, pairs, NULL, 0, err);
     free(tri);
@@ -115,7 +103,7 @@ static sq_status smooth_stage(const sq_mesh *m, sq_quad_mesh *Q, progress_ctx *p
                               sq_remesh_stats *stats, sq_error *err)
 {
     *raw = NULL;
-    uint32_t *tri = mesh_triangles(m);
+    uint32_t *tri = sq_mesh_triangles(m);
     double *keep = malloc(3 * ((size_t)Q->nv + 1) * sizeof *keep);
     if (!tri || !keep) {
         free(tri), free(keep);
@@ -203,12 +191,14 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
             goto fail;
         }
         memcpy(out->valence, M.valence, (size_t)m->nv * sizeof *out->valence);
-        for (uint32_t v = 0; v < M.mesh.nv && !st; v++)
-            if (v >= m->nv ? M.valence[v] != 4 : valence && valence[v] != M.valence[v])
+        for (uint32_t v = 0; v < M.mesh.nv && !st; v++) {
+            int32_t want = v >= m->nv ? 4 : valence ? valence[v] : M.valence[v]; /* added vertices: none */
+            if (M.valence[v] != want)
                 st = sq_error_set(err, SQ_ERR_ARGUMENT,
                                   "the map's angle sum at vertex %u makes a cone of valence %d, the cones "
                                   "given say %d",
-                                  v, (int)M.valence[v], v >= m->nv ? 4 : (int)valence[v]);
+                                  v, (int)M.valence[v], (int)want);
+        }
     } else if (valence) {
         memcpy(out->valence, valence, (size_t)m->nv * sizeof *valence);
         st = sq_cones_check_gauss_bonnet(m->nv, valence, sq_mesh_euler(m), err);
@@ -223,23 +213,23 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     for (uint32_t v = 0; v < m->nv; v++) stats->cones += out->valence[v] != 4;
     stats->t_cones = sq_now() - t0;
 
-    /* 2. param (seed 7-9) */
+    /* 2. param (seed 7-9), unless the caller gave the map */
     double t1 = sq_now();
-    if (stats->from_map) goto optimize;
-    begin(&pc, stats, "param", SHARE_PARAM);
-    sq_param_options po;
-    sq_param_options_default(&po);
-    po.seed = opt->seed ? opt->seed : 1;
-    po.attempts = opt->attempts ? opt->attempts : 4;
-    po.progress = param_progress;
-    po.progress_ctx = &pc;
-    st = sq_param_build(m, out->valence, &po, &P, &stats->param, err);
-    stats->t_param = sq_now() - t1;
-    if (st) goto fail;
+    if (!stats->from_map) {
+        begin(&pc, stats, "param", SHARE_PARAM);
+        sq_param_options po;
+        sq_param_options_default(&po);
+        po.seed = opt->seed ? opt->seed : 1;
+        po.attempts = opt->attempts ? opt->attempts : 4;
+        po.progress = param_progress;
+        po.progress_ctx = &pc;
+        st = sq_param_build(m, out->valence, &po, &P, &stats->param, err);
+        stats->t_param = sq_now() - t1;
+        if (st) goto fail;
+    }
 
     /* 3 and 4. the map, exact, optimized and simplified in rounds (the
      * caller's map: optimized whole, it has no added vertices to remove) */
-optimize:
     t1 = sq_now();
     begin(&pc, stats, "optimize", SHARE_OPTIMIZE);
     if (opt->keep_maps && !stats->from_map && (st = sq_remesh_param_map(&P, m, out->valence, &out->map, err)))

@@ -74,62 +74,30 @@ sq_status sq_remesh_quad_intersections(const sq_quad_mesh *Q, uint64_t *pairs, u
     return st;
 }
 
-/* the worst fold margin of the quads around v */
-static double worst_margin(const sq_quad_mesh *Q, const uint32_t *vq_off, const uint32_t *vq, uint32_t v)
-{
-    double w = 2.0;
-    for (uint32_t k = vq_off[v]; k < vq_off[v + 1]; k++) {
-        const uint32_t *q = Q->quad + 4 * (size_t)vq[k];
-        double x = sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1],
-                                       Q->pos + 3 * (size_t)q[2], Q->pos + 3 * (size_t)q[3]);
-        if (x < w) w = x;
-    }
-    return w;
-}
-
 sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint64_t *pairs, uint32_t *rounds,
                                          sq_error *err)
 {
     uint32_t nv = Q->nv, nq = Q->nq;
     *rounds = 0;
-    uint32_t *list = malloc(2 * (size_t)REPAIR_LIST * sizeof *list);
-    uint32_t *tri = malloc(3 * ((size_t)m->nf + 1) * sizeof *tri);
-    uint32_t *vq_off = calloc((size_t)nv + 1, sizeof *vq_off), *vq = malloc(4 * ((size_t)nq + 1) * sizeof *vq);
-    uint32_t *nb = malloc(4 * ((size_t)nq + 1) * sizeof *nb);
+    uint32_t *list = malloc(2 * (size_t)REPAIR_LIST * sizeof *list), *tri = NULL;
     uint8_t *mark = calloc((size_t)nv + 1, 1), *grow = calloc((size_t)nv + 1, 1);
     double *best = malloc(3 * ((size_t)nv + 1) * sizeof *best);
+    sq_quad_star S = {NULL, NULL, NULL};
     sq_cp_tree tree;
     memset(&tree, 0, sizeof tree);
     sq_status st = SQ_OK;
-    if (!list || !tri || !vq_off || !vq || !nb || !mark || !grow || !best) {
+    if (!list || !mark || !grow || !best) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (intersection repair)");
         goto done;
     }
     if ((st = sq_remesh_quad_intersections(Q, pairs, list, REPAIR_LIST, err)) || !*pairs) goto done;
-    for (uint32_t f = 0; f < m->nf; f++) {
-        uint32_t h = m->f_he[f];
-        for (int c = 0; c < 3; c++, h = m->he_next[h]) tri[3 * (size_t)f + c] = m->he_vert[h];
+    if (!(tri = sq_mesh_triangles(m))) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (intersection repair)");
+        goto done;
     }
     if ((st = sq_cp_tree_build(m->nv, m->pos, m->nf, tri, &tree, err))) goto done;
-    /* quads around each vertex; the next corner of each: every edge
-     * neighbour once (the quads are closed and manifold) */
-    for (uint32_t f = 0; f < nq; f++)
-        for (int k = 0; k < 4; k++) vq_off[Q->quad[4 * (size_t)f + k] + 1]++;
-    for (uint32_t v = 0; v < nv; v++) vq_off[v + 1] += vq_off[v];
-    {
-        uint32_t *fill = malloc(((size_t)nv + 1) * sizeof *fill);
-        if (!fill) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (intersection repair)");
-            goto done;
-        }
-        memcpy(fill, vq_off, (size_t)nv * sizeof *fill);
-        for (uint32_t f = 0; f < nq; f++)
-            for (int k = 0; k < 4; k++) {
-                uint32_t v = Q->quad[4 * (size_t)f + k], slot = fill[v]++;
-                vq[slot] = f, nb[slot] = Q->quad[4 * (size_t)f + (k + 1) % 4];
-            }
-        free(fill);
-    }
+    /* quads around each vertex, and every edge neighbour once (S.next) */
+    if ((st = sq_quad_star_build(nv, nq, Q->quad, &S, err))) goto done;
     uint64_t best_pairs = *pairs;
     memcpy(best, Q->pos, 3 * (size_t)nv * sizeof *best);
     uint32_t ring = 0;
@@ -142,17 +110,17 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
             memcpy(grow, mark, nv);
             for (uint32_t v = 0; v < nv; v++)
                 if (mark[v])
-                    for (uint32_t k = vq_off[v]; k < vq_off[v + 1]; k++) grow[nb[k]] = 1;
+                    for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++) grow[S.next[k]] = 1;
             memcpy(mark, grow, nv);
         }
         for (uint32_t v = 0; v < nv; v++) {
             if (!mark[v] || Q->valence[v] != 4) continue;
             double *p = Q->pos + 3 * (size_t)v, old[3], tgt[3] = {0, 0, 0};
             memcpy(old, p, sizeof old);
-            uint32_t deg = vq_off[v + 1] - vq_off[v];
-            for (uint32_t k = vq_off[v]; k < vq_off[v + 1]; k++)
-                for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)nb[k] + i] / deg;
-            double before = worst_margin(Q, vq_off, vq, v);
+            uint32_t deg = S.off[v + 1] - S.off[v];
+            for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++)
+                for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)S.next[k] + i] / deg;
+            double before = sq_quad_star_worst_margin(&S, Q->pos, Q->quad, v);
             int moved = 0;
             for (double step = 1.0; step > 1.0 / 16 && !moved; step *= 0.5) {
                 double x[3];
@@ -160,7 +128,7 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
                 sq_cp_hit hit;
                 sq_cp_tree_query(&tree, x, &hit);
                 memcpy(p, hit.point, sizeof old);
-                double after = worst_margin(Q, vq_off, vq, v);
+                double after = sq_quad_star_worst_margin(&S, Q->pos, Q->quad, v);
                 moved = after >= 0.0 || after >= before;
             }
             if (!moved) memcpy(p, old, sizeof old);
@@ -178,6 +146,7 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
     *pairs = best_pairs;
 done:
     sq_cp_tree_free(&tree);
-    free(list), free(tri), free(vq_off), free(vq), free(nb), free(mark), free(grow), free(best);
+    sq_quad_star_free(&S);
+    free(list), free(tri), free(mark), free(grow), free(best);
     return st;
 }

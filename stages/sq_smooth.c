@@ -12,7 +12,6 @@
  * rejected. From the second half of the iterations on, quad vertices are
  * first pinned on the surface's sharp points where the quads would cut
  * them off (pin_far_surface_vertices, sq_smooth_pin.c) and held there. */
-#include <float.h>
 #include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
@@ -21,6 +20,7 @@
 #include "sq_clock.h"
 #include "sq_ceres_adapter.h"
 #include "sq_closest_point.h"
+#include "sq_mesh.h"
 #include "sq_smooth_internal.h"
 
 #define MAX_BACKTRACK 8
@@ -447,10 +447,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         for (int k = 0; k < 4; k++) s.vq[s.vq_off[quads[4 * (size_t)q + k]]++] = q;
     for (uint32_t v = nv; v > 0; v--) s.vq_off[v] = s.vq_off[v - 1];
     s.vq_off[0] = 0;
-    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
-    for (uint32_t v = 0; v < snv; v++)
-        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], spos[3 * (size_t)v + k]), hi[k] = fmax(hi[k], spos[3 * (size_t)v + k]);
-    diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    diag = sq_bbox_diagonal(snv, spos);
     for (uint32_t t = 0; t < snt; t++) {
         const double *a = spos + 3 * (size_t)stri[3 * (size_t)t], *b = spos + 3 * (size_t)stri[3 * (size_t)t + 1],
                      *c = spos + 3 * (size_t)stri[3 * (size_t)t + 2];

@@ -40,6 +40,29 @@ double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2,
 void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads,
                              sq_quad_quality *q);
 
+/* The referee's size figures of quad (p0, p1, p2, p3) (check_quad.py
+ * [3]): its area (the mean of its two triangulations') and its shortest
+ * edge. */
+void sq_quad_size(const double *p0, const double *p1, const double *p2, const double *p3, double *area,
+                  double *shortest_edge);
+
+/* The quads around each vertex of a quad mesh (sq_quad_star.c): those of
+ * vertex v are quad[off[v] .. off[v + 1]), and next[k] is the corner after
+ * v in quad[k], so that next lists every edge neighbour of v once where
+ * the mesh is closed and manifold. */
+typedef struct sq_quad_star {
+    uint32_t *off;  /* nv + 1 */
+    uint32_t *quad; /* 4 nq   */
+    uint32_t *next; /* 4 nq   */
+} sq_quad_star;
+
+/* SQ_ERR_NOMEM or SQ_OK; S is zeroed on failure. */
+sq_status sq_quad_star_build(uint32_t nv, uint32_t nq, const uint32_t *quads, sq_quad_star *S, sq_error *err);
+void sq_quad_star_free(sq_quad_star *S);
+
+/* The smallest sq_quad_fold_margin of the quads around v (2 if none). */
+double sq_quad_star_worst_margin(const sq_quad_star *S, const double *pos, const uint32_t *quads, uint32_t v);
+
 typedef struct sq_smooth_options {
     int iterations;          /* outer iterations: optimize, re-project (10)       */
     int solver_iterations;   /* Levenberg-Marquardt iterations per outer one (5)  */

@@ -31,6 +31,20 @@ double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2,
     return c1 > c2 ? c1 : c2;
 }
 
+void sq_quad_size(const double *p0, const double *p1, const double *p2, const double *p3, double *area,
+                  double *shortest_edge)
+{
+    const double *p[4] = {p0, p1, p2, p3};
+    double e[4][3], d02[3], d03[3], d13[3], n012[3], n023[3], n013[3], n123[3];
+    for (int k = 0; k < 4; k++) sub3(p[(k + 1) % 4], p[k], e[k]);
+    sub3(p2, p0, d02), sub3(p3, p0, d03), sub3(p3, p1, d13);
+    cross3(e[0], d02, n012), cross3(d02, d03, n023), cross3(e[0], d03, n013), cross3(e[1], d13, n123);
+    *area = 0.25 * (sqrt(dot3(n012, n012)) + sqrt(dot3(n023, n023)) + sqrt(dot3(n013, n013)) +
+                    sqrt(dot3(n123, n123)));
+    *shortest_edge = fmin(fmin(sqrt(dot3(e[0], e[0])), sqrt(dot3(e[1], e[1]))),
+                          fmin(sqrt(dot3(e[2], e[2])), sqrt(dot3(e[3], e[3]))));
+}
+
 void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads, sq_quad_quality *q)
 {
     memset(q, 0, sizeof *q);

@@ -186,7 +186,6 @@ static sq_param_options tree_options(const sq_mesh *m, const sq_param_options *o
     return f;
 }
 
-
 /* The attempts of sq_param_build on m (the input, or the input with
  * edges between cones split), of one kind or both, in the order below;
  * stats->cut_needs_split is set where any attempt's cut graph failed for

@@ -71,17 +71,6 @@ static double triangle_distance(const double *p, const double *a, const double *
     return fmin(d, fabs(dot3(ap, n)) / nn);
 }
 
-static double input_diagonal(const sq_mesh *m)
-{
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (uint32_t v = 0; v < m->nv; v++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fmin(lo[k], m->pos[3 * (size_t)v + k]);
-            hi[k] = fmax(hi[k], m->pos[3 * (size_t)v + k]);
-        }
-    return hypot(hypot(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
-}
-
 sq_status sq_param_verify_refinement(const sq_param *P, const sq_mesh *m, double *max_dist,
                                      sq_error *err)
 {
@@ -104,7 +93,7 @@ sq_status sq_param_verify_refinement(const sq_param *P, const sq_mesh *m, double
                             P->pos[3 * (size_t)v + 2], m->pos[3 * (size_t)v], m->pos[3 * (size_t)v + 1],
                             m->pos[3 * (size_t)v + 2]);
     }
-    const double diag = input_diagonal(m);
+    const double diag = sq_bbox_diagonal(m->nv, m->pos);
     const double tol = REFINEMENT_TOLERANCE * diag;
     double worst = 0;
     for (uint32_t f = 0; f < P->nf; f++) {
