@@ -192,7 +192,8 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
         }
         memcpy(out->valence, M.valence, (size_t)m->nv * sizeof *out->valence);
         for (uint32_t v = 0; v < M.mesh.nv && !st; v++) {
-            int32_t want = v >= m->nv ? 4 : valence ? valence[v] : M.valence[v]; /* added vertices: none */
+            /* no cone at an added vertex; at the mesh's, the cones given (if any) */
+            int32_t want = v >= m->nv ? 4 : valence ? valence[v] : M.valence[v];
             if (M.valence[v] != want)
                 st = sq_error_set(err, SQ_ERR_ARGUMENT,
                                   "the map's angle sum at vertex %u makes a cone of valence %d, the cones "
