@@ -118,6 +118,9 @@ static void print_text(const report *r)
     }
     printf("re-embedded   %u rectangles by the surface's mean-value map, %u by a fallback\n", s->faces - s->fallback_faces,
            s->fallback_faces);
+    if (s->refine_rounds)
+        printf("refined       %u rectangles cut along their kink lines and grids first (%u rounds)\n",
+               s->refined_faces, s->refine_rounds);
     if (r->optimize)
         printf("optimized     symmetric Dirichlet %.4g -> %.4g (worst triangle %.4g -> %.4g), %u "
                "iterations, %.3f s: %s\n",
@@ -148,10 +151,10 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
                r->map.max_seam_error, r->map.grid, r->map.moved_uv);
     if (r->done)
         printf(",\n  \"tmesh\": {\"nodes\": %u, \"arcs\": %u, \"faces\": %u},\n  \"split_vertices\": %u, "
-               "\"split_triangles\": %u, \"fallback_faces\": %u,\n  \"quads\": %.0f, \"min_quads\": %.0f, "
-               "\"igm_vertices\": %u, \"igm_faces\": %u",
+               "\"split_triangles\": %u, \"fallback_faces\": %u, \"refined_faces\": %u, \"refine_rounds\": %u,\n  "
+               "\"quads\": %.0f, \"min_quads\": %.0f, \"igm_vertices\": %u, \"igm_faces\": %u",
                s->nodes, s->arcs, s->faces, s->split_vertices, s->split_triangles, s->fallback_faces,
-               s->quads, s->min_quads, r->igm_nv, r->igm_nf);
+               s->refined_faces, s->refine_rounds, s->quads, s->min_quads, r->igm_nv, r->igm_nf);
     if (r->done && r->optimize) {
         printf(",\n  \"optimize\": {\"iterations\": %u, \"changed\": %s, \"energy_before\": ",
                r->st.optimize.iterations, r->st.optimize.changed ? "true" : "false");

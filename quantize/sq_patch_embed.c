@@ -215,8 +215,9 @@ sq_status sq_patch_embed(const sq_patch *P, double *out_uv, int *method, sq_erro
     sq_status st;
     uint32_t bad = 0;
     if (P->pos) { /* the surface's own shape: mean-value weights in 3D */
-        if ((st = tutte_solve(P, out_uv, 1, P->pos, err))) return st;
-        bad = count_flips(P, out_uv);
+        st = tutte_solve(P, out_uv, 1, P->pos, err);
+        if (st && st != SQ_ERR_SOLVER) return st;
+        bad = st ? P->nt : count_flips(P, out_uv);
         if (!bad) {
             if (method) *method = SQ_PATCH_SURFACE;
             return SQ_OK;
@@ -228,8 +229,11 @@ sq_status sq_patch_embed(const sq_patch *P, double *out_uv, int *method, sq_erro
         if (method) *method = SQ_PATCH_SWEEP;
         return SQ_OK;
     }
-    if ((st = tutte_solve(P, out_uv, 1, NULL, err))) return st;
-    uint32_t bad2 = count_flips(P, out_uv);
+    /* a singular mean-value system (weights of very thin triangles) is
+     * one more reason for the uniform weights */
+    st = tutte_solve(P, out_uv, 1, NULL, err);
+    if (st && st != SQ_ERR_SOLVER) return st;
+    uint32_t bad2 = st ? P->nt : count_flips(P, out_uv);
     if (bad2) { /* rounding in a badly conditioned mean-value system */
         if ((st = tutte_solve(P, out_uv, 0, NULL, err))) return st;
         bad2 = count_flips(P, out_uv);

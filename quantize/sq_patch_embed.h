@@ -25,15 +25,19 @@
  *     rectangle, so their composition is one, and it agrees with the
  *     prescribed boundary; it keeps the input map's shape. Triangles are
  *     mapped by their vertices, so a triangle much larger than the map's
- *     variation can still flip.
+ *     variation can still flip, and so can a long thin one across a kink
+ *     (where an arc ends on a side) or bent by the bilinear blend.
  *  3. Where that flips too: Tutte's map with mean-value weights from the
  *     map's own shape (which reproduce an affine change exactly), then
- *     with uniform weights (CHOLMOD) if rounding still flips a triangle.
+ *     with uniform weights (CHOLMOD) if rounding still flips a triangle or
+ *     the mean-value system is singular.
  * Every result is checked with the exact predicate.
  *
  * Cost: O(nv log nv) for the sweep; one sparse Cholesky of the free
  * vertices for Tutte. A patch that neither gives positive triangles is
- * refused with the count: never returned folded. */
+ * refused (SQ_ERR_SOLVER) with the count: never returned folded.
+ * Quantization then cuts it along the sweep's kink lines and finer grids
+ * and tries again (sq_quantize_refine.c). */
 #ifndef SQ_PATCH_EMBED_H
 #define SQ_PATCH_EMBED_H
 

@@ -52,20 +52,20 @@ static void arcs_minimum(const sq_qlayout *L, int64_t *min_arc)
     free(key);
 }
 
-sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n_chords,
-                             const sq_quantize_options *opt, sq_map *igm, sq_quantize_stats *stats,
-                             sq_error *err)
+/* Steps 2-4 once. Where the embedding cannot place a patch, *failed
+ * (allocated here, np) marks it and S and L are kept for the refinement;
+ * else they are freed. */
+static sq_status quantize_round(const sq_map *M, const sq_chord *chords, uint32_t n_chords,
+                                const sq_quantize_options *opt, sq_map *igm, sq_quantize_stats *stats,
+                                sq_split *keep_S, sq_qlayout *keep_L, uint8_t **failed, sq_error *err)
 {
-    sq_quantize_stats local;
-    if (!stats) stats = &local;
-    memset(stats, 0, sizeof *stats);
     double t0 = sq_now();
-    sq_status st = check_options(opt, err);
-    if (st) return st;
+    sq_status st = SQ_OK;
     memset(igm, 0, sizeof *igm);
     sq_split S;
     sq_qlayout L;
     memset(&L, 0, sizeof L);
+    *failed = NULL;
     int64_t *length = NULL, *min_arc = NULL;
     double *target = NULL;
     if ((st = sq_map_split(M, chords, n_chords, &S, err))) return st;
@@ -124,7 +124,20 @@ sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n
     double t3 = sq_now();
     stats->seconds_lengths = t3 - t2;
     stats->min_quads = ls.min_quads;
-    if ((st = sq_qlayout_embed(M, &S, &L, length, igm, &stats->fallback_faces, err))) goto done;
+    *failed = calloc((size_t)L.np + 1, 1);
+    if (!*failed) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quantization)");
+        goto done;
+    }
+    if ((st = sq_qlayout_embed(M, &S, &L, length, igm, &stats->fallback_faces, *failed, err))) {
+        if (st == SQ_ERR_SOLVER) {
+            *keep_S = S, *keep_L = L;
+            free(length), free(target), free(min_arc);
+            return st;
+        }
+        goto done;
+    }
+    free(*failed), *failed = NULL;
     stats->seconds_embed = sq_now() - t3;
     stats->quads = 0;
     for (uint32_t p = 0; p < L.np; p++) {
@@ -139,6 +152,53 @@ done:
     free(length), free(target), free(min_arc);
     sq_qlayout_free(&L);
     sq_split_free(&S);
+    if (st) free(*failed), *failed = NULL;
+    stats->seconds = sq_now() - t0;
+    return st;
+}
+
+/* Refinement rounds: the kink lines, then grids of 4 x 4 and 16 x 16. */
+static const uint32_t refine_grid[] = {1, 4, 16};
+
+sq_status sq_quantize_chords(const sq_map *M, const sq_chord *chords, uint32_t n_chords,
+                             const sq_quantize_options *opt, sq_map *igm, sq_quantize_stats *stats,
+                             sq_error *err)
+{
+    sq_quantize_stats local;
+    if (!stats) stats = &local;
+    memset(stats, 0, sizeof *stats);
+    double t0 = sq_now();
+    sq_status st = check_options(opt, err);
+    if (st) return st;
+    sq_chord *all = NULL;
+    uint32_t n_all = 0, cap_all = 0;
+    for (uint32_t round = 0;; round++) {
+        sq_split S;
+        sq_qlayout L;
+        uint8_t *failed = NULL;
+        st = quantize_round(M, all ? all : chords, all ? n_all : n_chords, opt, igm, stats, &S, &L, &failed, err);
+        if (!failed) break;
+        /* st == SQ_ERR_SOLVER: some patches not embedded */
+        if (round < sizeof refine_grid / sizeof *refine_grid) {
+            for (uint32_t p = 0; p < L.np; p++) stats->refined_faces += failed[p];
+            sq_error e2;
+            sq_status s2 = SQ_OK;
+            if (!all) {
+                all = malloc(((size_t)n_chords + 1) * sizeof *all);
+                if (!all) s2 = sq_error_set(&e2, SQ_ERR_NOMEM, "out of memory (quantization refinement)");
+                else memcpy(all, chords, (size_t)n_chords * sizeof *all), n_all = cap_all = n_chords;
+            }
+            if (!s2) s2 = sq_qlayout_refine_chords(&S, &L, failed, refine_grid[round], &all, &n_all, &cap_all, &e2);
+            if (s2 && err) *err = e2;
+            if (s2) st = s2;
+            stats->refine_rounds = round + 1;
+        }
+        free(failed);
+        sq_qlayout_free(&L);
+        sq_split_free(&S);
+        if (st != SQ_ERR_SOLVER || round >= sizeof refine_grid / sizeof *refine_grid) break;
+    }
+    free(all);
     stats->seconds = sq_now() - t0;
     return st;
 }

@@ -53,6 +53,9 @@ typedef struct sq_quantize_stats {
     uint32_t nodes, arcs, faces;      /* the T-mesh read off the split       */
     uint32_t split_vertices, split_triangles;
     uint32_t fallback_faces;          /* faces not placed by the surface map */
+    uint32_t refined_faces;           /* faces cut further before they could */
+                                      /* be embedded (summed over rounds)    */
+    uint32_t refine_rounds;           /* rounds of that refinement (0-3)     */
     double quads;                     /* quads of the integer-grid map       */
     double min_quads;                 /* the fewest the T-mesh allows (for a */
                                       /* quad target; 0 otherwise)          */

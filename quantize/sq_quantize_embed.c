@@ -29,7 +29,8 @@
 #define ALPHA_GRID 16777216.0
 
 sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout *L,
-                           const int64_t *length, sq_map *igm, uint32_t *fallback, sq_error *err)
+                           const int64_t *length, sq_map *igm, uint32_t *fallback, uint8_t *failed,
+                           sq_error *err)
 {
     const sq_mesh *m = &S->mesh;
     sq_status st = SQ_OK;
@@ -60,6 +61,9 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
         goto done;
     }
     if (fallback) *fallback = 0;
+    uint32_t nfailed = 0;
+    sq_error e_patch;
+    if (failed) memset(failed, 0, L->np);
     /* 1. arc positions */
     for (uint32_t a = 0; a < L->na && !st; a++) {
         uint32_t o = L->arc_off[a], n = L->arc_nv[a];
@@ -177,7 +181,11 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
         for (uint32_t l = 0; l < nl; l++) memcpy(lpos + 3 * (size_t)l, S->pos + 3 * (size_t)lv[l], 3 * sizeof *lpos);
         sq_patch P = {nl, tri_off[p + 1] - tri_off[p], old_uv, ltri, W, H, A, B, fixed, lpos};
         int method = 0;
-        if ((st = sq_patch_embed(&P, new_uv, &method, err))) break;
+        if ((st = sq_patch_embed(&P, new_uv, &method, failed && !nfailed ? err : &e_patch))) {
+            if (st != SQ_ERR_SOLVER || !failed) break;
+            failed[p] = 1, nfailed++, st = SQ_OK; /* the next patch; the caller refines this one */
+            continue;
+        }
         if (method != SQ_PATCH_SURFACE && fallback) (*fallback)++;
         /* vt of this patch */
         if (nvt + nl > vt_cap) {
@@ -196,6 +204,15 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
         nvt += nl;
     }
     if (st) goto done;
+    if (nfailed) {
+        st = SQ_ERR_SOLVER;
+        if (nfailed > 1 && err) {
+            char first[sizeof err->msg];
+            memcpy(first, err->msg, sizeof first);
+            sq_error_set(err, st, "%u T-mesh faces not embedded, the first: %s", nfailed, first);
+        }
+        goto done;
+    }
     /* 3. the map, checked exactly */
     {
         sq_soup soup;

@@ -55,8 +55,24 @@ uint32_t sq_qlayout_next_boundary(const sq_split *S, uint32_t h);
  * for the arc lengths `length` (na), assembled and checked exactly
  * (sq_map_from_soup with SQ_MAP_REQUIRE_EXACT | SQ_MAP_REQUIRE_INTEGER).
  * *fallback receives the patches that needed a fallback (sq_patch_embed:
- * not the surface's mean-value map). */
+ * not the surface's mean-value map). failed (np, or NULL): where given,
+ * a patch that sq_patch_embed cannot place is marked 1 and the others are
+ * still tried; SQ_ERR_SOLVER then names the first. */
 sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout *L,
-                           const int64_t *length, sq_map *igm, uint32_t *fallback, sq_error *err);
+                           const int64_t *length, sq_map *igm, uint32_t *fallback, uint8_t *failed,
+                           sq_error *err);
+
+/* Refinement for the patches marked in failed (np): chords (appended to
+ * *chords, *n of them, *cap allocated) that cut each such patch along the
+ * sweep's kink lines (sq_patch_embed.h: the lines u = c through the nodes
+ * on its bottom and top sides, v = c through those on its left and right)
+ * and, for grid > 1, along the lines dividing it into grid x grid equal
+ * cells. Each chord is refinement only (an empty extent: it lies on no
+ * arc), in the chart of every mesh face of the patch that the line
+ * crosses; a line within 1e-9 of the patch's size of a line the face is
+ * already cut along is that line. */
+sq_status sq_qlayout_refine_chords(const sq_split *S, const sq_qlayout *L, const uint8_t *failed,
+                                   uint32_t grid, sq_chord **chords, uint32_t *n, uint32_t *cap,
+                                   sq_error *err);
 
 #endif

@@ -10,6 +10,8 @@
 #    meshes of genus 0 to 3, parametrized by `seamquad param`, then
 #    quantized to about 1000 quads and extracted: the referee passes (the
 #    torus with seed 2 has a T-mesh face that touches itself many times);
+#  - fandisk's own map at 5K quads, whose 8 x 6 T-mesh face embeds only
+#    once it is cut along its kink lines: an exact integer-grid map;
 #  - below the fewest quads the T-mesh allows, that fewest is built and
 #    named; --edge-length gives a map too; --svg writes a picture;
 #  - bad input: a flipped UV triangle, a seam moved off its transition, a
@@ -97,6 +99,23 @@ if [ $? = 0 ] && echo "$out" | grep -q "the fewest this T-mesh allows is about" 
   echo "$out" | grep -q "verified" && [ -s "$tmp/min.igm.obj" ]; then ok; else bad "minimum: $out"; fi
 if "$bin" quantize "$mesh" --map "$mesh" --edge-length 0.05 -o "$tmp/len.igm.obj" --svg "$tmp/t.svg" \
     --quiet && [ -s "$tmp/len.igm.obj" ] && grep -q '<svg' "$tmp/t.svg"; then ok; else bad "--edge-length / --svg"; fi
+# --- a patch only refinement embeds: fandisk's own map at 5K quads -----------
+# (param's map has an 8 x 6 T-mesh face of long slivers from side to side:
+# the sweep and Tutte's map flip triangles there until the face is cut along
+# its kink lines; the result must be an exact integer-grid map)
+mesh=$data/fandisk.obj
+cones=$data/fandisk_Th_hat
+if ! "$bin" param "$mesh" --cones "$cones" -o "$tmp/fandisk.map.obj" --quiet >/dev/null 2>"$tmp/fandisk.err"; then
+  bad "fandisk: param failed: $(tail -1 "$tmp/fandisk.err")"
+elif ! "$bin" quantize "$mesh" --map "$tmp/fandisk.map.obj" --cones "$cones" --quads 5000 --optimize off \
+    -o "$tmp/fandisk.igm.obj" --json >"$tmp/fandisk.json" 2>"$tmp/fandisk.err"; then
+  bad "fandisk: quantize failed: $(tail -1 "$tmp/fandisk.err")"
+else
+  rounds=$(python3 -c "import json; print(json.load(open('$tmp/fandisk.json'))['refine_rounds'])")
+  if [ "$rounds" -ge 1 ]; then ok; else bad "fandisk: no refinement round (the case this tests is gone)"; fi
+  if python3 "$shared/tools/check_param.py" "$mesh" "$cones" "$tmp/fandisk.igm.obj" --integer >"$tmp/fandisk.ref" 2>&1
+  then ok; else bad "fandisk: check_param: $(tail -1 "$tmp/fandisk.ref")"; fi
+fi
 
 # --- bad input: exit 1, a message, nothing written ---------------------------
 mesh=$data/eight.obj
