@@ -16,7 +16,7 @@
 static void help(FILE *f)
 {
     fprintf(f,
-            "usage: seamquad extract MESH IGM.obj -o QUADS.obj [--cones FILE] [--untangle on|off]\n"
+            "usage: seamquad extract MESH IGM.obj -o QUADS.obj [--cones FILE]\n"
             "                        [--json] [--quiet]\n"
             "\n"
             "Extracts the quad mesh of an integer-grid map (IGM) of the closed triangle\n"
@@ -77,9 +77,6 @@ static void help(FILE *f)
             "                its valence, so the quad mesh's irregular vertices are these\n"
             "                cones; without it, the cones are whatever the map's angle\n"
             "                sums say\n"
-            "  --untangle on|off  step 5 (default on; off: the map's own positions,\n"
-            "                for diagnosis: step 6 then counts their folds and\n"
-            "                refuses them)\n"
             "  --json        machine-readable statistics on stdout: grid points by kind,\n"
             "                quads, edges, irregular vertices, valences, time per step\n"
             "  --quiet       no summary on stdout (errors still on stderr)\n"
@@ -108,7 +105,6 @@ typedef struct report {
     sq_untangle_stats un;
     sq_quad_shapes shapes;
     int shapes_checked;
-    int untangle;
     double t_untangle;
     uint32_t hist[MAX_VALENCE_HIST]; /* quad mesh valences */
     double t_read, t_map, t_write, t_total;
@@ -143,9 +139,8 @@ static void print_text(const report *r)
     printf(")\n");
     printf("traced        %llu faces, edges and vertices crossed (longest edge: %u)\n",
            (unsigned long long)s->trace_steps, s->max_trace_steps);
-    if (r->untangle)
-        printf("untangled     %u folded quads before, %u after (%u moves in %u rounds, %.3f s)\n",
-               r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
+    printf("untangled     %u folded quads before, %u after (%u moves in %u rounds, %.3f s)\n",
+           r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
     printf("verified      closed, manifold, oriented, Euler characteristic of the mesh; the\n"
            "              irregular vertices are the cones; quads = UV area\n");
     printf("time          read %.3f s, map %.3f s, extract %.3f s (check %.3f, points %.3f, "
@@ -176,10 +171,9 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
         print_hist(r->hist, 1);
         printf("},\n  \"trace_steps\": %llu, \"max_trace_steps\": %u", (unsigned long long)s->trace_steps,
                s->max_trace_steps);
-        if (r->untangle)
-            printf(",\n  \"folded_before\": %u, \"folded_after\": %u, \"untangle_moves\": %u, "
-                   "\"untangle_rounds\": %u, \"untangle_s\": %.6f",
-                   r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
+        printf(",\n  \"folded_before\": %u, \"folded_after\": %u, \"untangle_moves\": %u, "
+               "\"untangle_rounds\": %u, \"untangle_s\": %.6f",
+               r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
     }
     if (r->shapes_checked)
         printf(",\n  \"degenerate\": {\"short_edge\": %u, \"tiny\": %u, \"folded\": %u}", r->shapes.short_edge,
@@ -200,7 +194,6 @@ int sq_cmd_extract(int argc, char **argv)
 {
     report r;
     memset(&r, 0, sizeof r);
-    r.untangle = 1;
     int json = 0, quiet = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -211,14 +204,6 @@ int sq_cmd_extract(int argc, char **argv)
             json = 1;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             quiet = 1;
-        } else if (!strcmp(a, "--untangle")) {
-            const char *v = i + 1 < argc ? argv[++i] : "";
-            if (!strcmp(v, "on")) r.untangle = 1;
-            else if (!strcmp(v, "off")) r.untangle = 0;
-            else {
-                fprintf(stderr, "seamquad extract: --untangle is on or off, not '%s'\n", v);
-                return SQ_EXIT_USAGE;
-            }
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "seamquad extract: %s needs a file\n", a);
@@ -297,7 +282,7 @@ int sq_cmd_extract(int argc, char **argv)
         st = sq_extract(&M, &Q, &r.st, &err);
         if (st) sq_cli_name_file(&err, r.map_path);
     }
-    if (!st && r.untangle) {
+    if (!st) {
         stage = "untangle";
         double t1 = sq_now();
         st = sq_extract_untangle(&M, &Q, &r.un, &err);

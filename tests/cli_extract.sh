@@ -152,8 +152,6 @@ if [ -s "$igm" ]; then
   # every vt times 1/2: seams still integer, but cones on half-integers
   scale "$igm" 0.5 "$tmp/half.obj"
   refused "cone off the integer grid" "not on an integer point" "$eight" "$tmp/half.obj"
-  # param's map as it is: quads folded in 3D (not untangled) are refused
-  refused "folded quads (--untangle off)" "quads are folded over the surface" "$eight" "$igm" --untangle off
   # no vt at all
   sed -e '/^vt /d' -e 's#/[0-9]*##g' "$igm" >"$tmp/novt.obj"
   refused "missing vt" "vt" "$eight" "$tmp/novt.obj"
