@@ -47,13 +47,14 @@ static void help(FILE *f)
             "end, four times; (4) each point's position by barycentric interpolation in\n"
             "the triangle (or edge, or vertex) holding it. Every decision is an exact\n"
             "orientation test on the stored doubles. (5) Where a quad is folded in 3D\n"
-            "(the map is distorted at the scale of one quad, as around the cones of\n"
-            "published maps), the vertices of folded quads other than cones move\n"
-            "towards their neighbours' mean, projected back onto MESH, each move kept\n"
-            "only if it unfolds; the summary counts the folds before and after.\n"
-            "(6) Every quad is judged as check_quad.py judges it: none folded, no edge\n"
-            "of length <= 1e-12 of the bounding-box diagonal, no area <= 1e-12 of its\n"
-            "square; one such quad and nothing is written (exit 1, the counts and the\n"
+            "or turned over (every corner facing away from the surface), as where the\n"
+            "map is distorted at the scale of one quad, the vertices of such quads\n"
+            "other than cones move towards their neighbours' mean (or other targets),\n"
+            "projected back onto MESH, each move kept only if it helps; the summary\n"
+            "counts the bad quads before and after. (6) Every quad is judged as\n"
+            "check_quad.py judges it: none folded, no edge of length <= 1e-12 of the\n"
+            "bounding-box diagonal, no area <= 1e-12 of its square; and none turned\n"
+            "over; one such quad and nothing is written (exit 1, the counts and the\n"
             "first quad named).\n"
             "\n"
             "Guarantees of QUADS.obj (written only when all hold):\n"
@@ -64,7 +65,8 @@ static void help(FILE *f)
             "  - every vertex lies on MESH (a convex combination of one triangle's\n"
             "    corners); no quad repeats a vertex, no two edges join the same points;\n"
             "  - the number of quads equals the UV area of the map;\n"
-            "  - no quad folded, none with a zero-length edge or zero area (step 6).\n"
+            "  - no quad folded or turned over, none with a zero-length edge or zero\n"
+            "    area (step 6).\n"
             "The shapes are the map's: where it is strongly distorted, quads spanning\n"
             "bent regions fold in 3D that step 5 may not unfold (param's maps, see\n"
             "docs/extract.md); `seamquad optimize` lowers a map's distortion first.\n"
@@ -139,7 +141,7 @@ static void print_text(const report *r)
     printf(")\n");
     printf("traced        %llu faces, edges and vertices crossed (longest edge: %u)\n",
            (unsigned long long)s->trace_steps, s->max_trace_steps);
-    printf("untangled     %u folded quads before, %u after (%u moves in %u rounds, %.3f s)\n",
+    printf("untangled     %u folded or turned quads before, %u after (%u moves in %u rounds, %.3f s)\n",
            r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
     printf("verified      closed, manifold, oriented, Euler characteristic of the mesh; the\n"
            "              irregular vertices are the cones; quads = UV area\n");
@@ -176,8 +178,8 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
                r->un.folded_before, r->un.folded_after, r->un.moves, r->un.rounds, r->t_untangle);
     }
     if (r->shapes_checked)
-        printf(",\n  \"degenerate\": {\"short_edge\": %u, \"tiny\": %u, \"folded\": %u}", r->shapes.short_edge,
-               r->shapes.tiny, r->shapes.folded);
+        printf(",\n  \"degenerate\": {\"short_edge\": %u, \"tiny\": %u, \"folded\": %u, \"turned\": %u}",
+               r->shapes.short_edge, r->shapes.tiny, r->shapes.folded, r->shapes.turned);
     printf(",\n  \"time_s\": {\"read\": %.6f, \"map\": %.6f, \"check\": %.6f, \"points\": %.6f, "
            "\"trace\": %.6f, \"quads\": %.6f, \"positions\": %.6f, \"extract\": %.6f, "
            "\"write\": %.6f, \"total\": %.6f}",
@@ -290,7 +292,8 @@ int sq_cmd_extract(int argc, char **argv)
     }
     if (!st) { /* no quad the referee would reject: nothing written */
         stage = "shapes";
-        st = sq_quad_mesh_check_shapes(&Q, sq_bbox_diagonal(M.mesh.nv, M.mesh.pos), &r.shapes, &err);
+        st = sq_quad_mesh_check_shapes(&Q, &M.mesh, Q.loc_face, Q.loc_bary, sq_bbox_diagonal(M.mesh.nv, M.mesh.pos), &r.shapes,
+                                       &err);
         r.shapes_checked = 1;
     }
     if (!st) {

@@ -107,14 +107,15 @@ sq_status sq_quad_mesh_write_obj(const char *path, const sq_quad_mesh *Q, sq_err
 
 typedef struct sq_untangle_stats {
     uint32_t folded_before, folded_after; /* quads folded in 3D (the referee's */
-                                          /* test: both triangulations)       */
+                                          /* test: both triangulations) or    */
+                                          /* turned over on the surface       */
     uint32_t rounds, moves;
 } sq_untangle_stats;
 
-/* Step 5 (sq_extract_untangle.c): the vertices of folded quads, cones
- * excepted, relaxed towards their neighbours' mean and projected back onto
- * the map's mesh, each move kept only where it raises the worst fold
- * margin around the vertex. Connectivity unchanged; moved vertices keep
+/* Step 5 (sq_extract_untangle.c): the vertices of folded or turned quads,
+ * cones excepted, relaxed towards their neighbours' mean and projected back
+ * onto the map's mesh, each move kept only where it raises the worst fold
+ * or turn margin around the vertex. Connectivity unchanged; moved vertices keep
  * lying on the surface (loc_face, loc_bary and uv updated: uv is then the
  * map's value there, no longer integer). Folds may remain (stats say how
  * many); the call fails only for lack of memory. */
@@ -128,14 +129,45 @@ typedef struct sq_quad_shapes {
                           /* their two triangulations' areas)                  */
     uint32_t folded;      /* both triangulations bent by more than 90 degrees   */
                           /* (sq_quad_fold_margin < 0)                         */
-    uint32_t first_short_edge, first_tiny, first_folded;
+    uint32_t turned;      /* turned over on the surface (sq_quad_turn_margin    */
+                          /* < 0; not a referee test: a flipped face)           */
+    uint32_t first_short_edge, first_tiny, first_folded, first_turned;
 } sq_quad_shapes;
 
 /* Step 6 (sq_quad_mesh_check_shapes.c): every quad of Q judged against
- * diag (the input's bounding-box diagonal). SQ_ERR_DEGENERATE when any
- * count is non-zero, the message naming the first quad (1-based, as in
- * the OBJ); out (may be NULL) receives the counts either way. O(nq). */
-sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, double diag, sq_quad_shapes *out, sq_error *err);
+ * diag (the input's bounding-box diagonal), and where m, vert_face and
+ * vert_bary are given (vertex v of Q in face vert_face[v] of the triangle
+ * mesh m, sq_quad_mesh_count_turned), none turned over on it. SQ_ERR_DEGENERATE when any count is non-zero, the
+ * message naming the first quad (1-based, as in the OBJ); out (may be
+ * NULL) receives the counts either way. O(nq). */
+sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, const sq_mesh *m, const uint32_t *vert_face,
+                                    const double *vert_bary, double diag, sq_quad_shapes *out, sq_error *err);
+
+/* Turned over on the surface: a quad whose every corner (the triangle of
+ * the corner and its two quad neighbours) faces away from the surface
+ * there. Such a quad need not be folded in the referee's sense (its two
+ * triangulations may agree) but lies upside down: a flipped face. (A quad
+ * with only some corners facing away is non-convex or twisted, a matter
+ * of quality: its scaled Jacobian is <= 0.) The surface normal at a point
+ * is the interpolation of area-weighted vertex normals
+ * (sq_mesh_vertex_normals: 3 nv, malloc'ed, NULL when out of memory) by
+ * its barycentric coordinates in face f (for the corners from f_he[f] on;
+ * sq_mesh_normal_at), so a sliver of the map's refinement, whose own
+ * normal is noise, does not decide it.
+ * sq_quad_turn_margin: n[k] the unit surface normal at corner p[k]; the
+ * largest over the corners of the cosine between the corner's normal and
+ * n[k] (0 for a corner whose triangle is below 1e-6 of the quad's largest
+ * corner triangle: its direction is rounding noise): < 0 exactly when the
+ * quad is turned.
+ * sq_quad_mesh_count_turned: the turned quads of Q on the triangle mesh m,
+ * vertex v at barycentric vert_bary[3v..] in face vert_face[v] of m;
+ * *first (may be NULL) the first (0-based, UINT32_MAX: none). O(nq + m's
+ * size). */
+double *sq_mesh_vertex_normals(const sq_mesh *m);
+void sq_mesh_normal_at(const sq_mesh *m, const double *vn, uint32_t f, const double bary[3], double n[3]);
+double sq_quad_turn_margin(const double *const p[4], const double *const n[4]);
+sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, const uint32_t *vert_face,
+                                    const double *vert_bary, uint32_t *count, uint32_t *first, sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -1,22 +1,28 @@
-/* seamquad: folded quads relaxed on the surface (sq_extract.h, step 5).
+/* seamquad: folded and turned quads relaxed on the surface (sq_extract.h,
+ * step 5).
  *
  * A quad extracted from a map is folded in 3D (in both triangulations the
  * two triangle normals differ by more than 90 degrees, the referee's test)
- * where the map is strongly distorted at the scale of one quad: around the
- * cones of published maps, whose 1-rings carry most of their distortion.
- * The connectivity is right; the positions are not. Each round moves every
- * vertex of a folded quad that is not a cone towards the mean of its edge
- * neighbours (else the mean of its quads' corners, else one neighbour,
- * else the point that makes one of its quads a parallelogram),
- * projected back onto the surface (the nearest point of the map's mesh: a
- * barycentric combination of one triangle's corners), with the step
- * halved until the worst fold margin (sq_quad_fold_margin) of the quads
- * around the vertex rises; a move that does not raise it is not made. Rounds without progress widen the moved set by one ring; at most
- * SQ_UNTANGLE_ROUNDS rounds. Cones never move, every vertex stays on the
- * surface, the connectivity is untouched.
+ * or turned over (every corner facing away from the surface:
+ * sq_quad_turn_margin) where the map is strongly distorted at the scale of
+ * one quad: around the cones of published maps, whose 1-rings carry most
+ * of their distortion, and throughout param's maps. The connectivity is
+ * right; the positions are not. Each round moves every vertex of such a
+ * quad that is not a cone towards the mean of its edge neighbours (else
+ * the mean of its quads' corners, else one neighbour, else the point that
+ * makes one of its quads a parallelogram, else its mirror image across
+ * the diagonal of one of its quads that it does not touch), projected back
+ * onto the surface
+ * (the nearest point of the map's mesh: a barycentric combination of one
+ * triangle's corners), with the step halved until the worst margin of the
+ * quads around the vertex rises (per quad the smaller of its fold and turn
+ * margins); a move that does not raise it is not made. Rounds without
+ * progress widen the moved set by one ring; at most SQ_UNTANGLE_ROUNDS
+ * rounds. Cones never move, every vertex stays on the surface, the
+ * connectivity is untouched.
  *
- * Cost: one closest-point tree over the map's triangles, then work
- * proportional to the folded quads' neighbourhoods. */
+ * Cost: the map's vertex normals and one closest-point tree over its
+ * triangles, then work proportional to the bad quads' neighbourhoods. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,11 +33,67 @@
 
 #define SQ_UNTANGLE_ROUNDS 60
 
-static int folded(const sq_quad_mesh *Q, uint32_t f)
+/* The smaller of quad f's fold margin and its turn margin on the surface
+ * (vn: the map mesh's vertex normals, interpolated at each corner's
+ * loc_face and loc_bary): negative where the quad is folded or turned
+ * over. */
+static double quad_margin(const sq_map *M, const sq_quad_mesh *Q, const double *vn, double min_edge, uint32_t f)
 {
     const uint32_t *q = Q->quad + 4 * (size_t)f;
-    return sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1], Q->pos + 3 * (size_t)q[2],
-                               Q->pos + 3 * (size_t)q[3]) < 0.0;
+    const double *p[4], *n[4];
+    double nrm[4][3];
+    for (int k = 0; k < 4; k++) {
+        p[k] = Q->pos + 3 * (size_t)q[k];
+        sq_mesh_normal_at(&M->mesh, vn, Q->loc_face[q[k]], Q->loc_bary + 3 * (size_t)q[k], nrm[k]);
+        n[k] = nrm[k];
+    }
+    double a = sq_quad_fold_margin(p[0], p[1], p[2], p[3]), b = sq_quad_turn_margin(p, n), area, lmin;
+    sq_quad_size(p[0], p[1], p[2], p[3], &area, &lmin);
+    if (!(lmin > min_edge)) return -2.0; /* two corners (nearly) at one place: worse than any fold */
+    return a < b ? a : b;
+}
+
+/* The quads around v judged together: the worst margin, how many are
+ * negative (folded or turned), and the sum of their negative parts. */
+typedef struct star_score {
+    double worst, neg_sum;
+    uint32_t neg;
+} star_score;
+
+static star_score star_margin(const sq_map *M, const sq_quad_star *S, const sq_quad_mesh *Q, const double *vn,
+                              double min_edge, uint32_t v)
+{
+    star_score r = {2.0, 0.0, 0};
+    for (uint32_t k = S->off[v]; k < S->off[v + 1]; k++) {
+        double x = quad_margin(M, Q, vn, min_edge, S->quad[k]);
+        if (x < r.worst) r.worst = x;
+        if (x < 0.0) r.neg++, r.neg_sum -= x;
+    }
+    return r;
+}
+
+/* a better than b: a higher worst margin; or, with no lower worst margin
+ * and no more bad quads, less badness in sum (a move that unfolds one of
+ * two bad quads around v without touching the worst) */
+static int star_better(star_score a, star_score b)
+{
+    if (a.worst > b.worst) return 1;
+    return a.worst >= b.worst && a.neg <= b.neg && a.neg_sum < b.neg_sum * (1.0 - 1e-9);
+}
+
+/* Vertex v moved to the surface point `hit` (pos, loc_face, loc_bary, and
+ * the map's UV there, no longer an integer point). */
+static void place(const sq_map *M, sq_quad_mesh *Q, uint32_t v, const sq_cp_hit *hit)
+{
+    const sq_mesh *m = &M->mesh;
+    memcpy(Q->pos + 3 * (size_t)v, hit->point, sizeof hit->point);
+    Q->loc_face[v] = hit->tri;
+    memcpy(Q->loc_bary + 3 * (size_t)v, hit->bary, sizeof hit->bary);
+    uint32_t h = m->f_he[hit->tri];
+    double uv[2] = {0, 0};
+    for (int k = 0; k < 3; k++, h = m->he_next[h])
+        for (int i = 0; i < 2; i++) uv[i] += hit->bary[k] * M->he_uv[2 * (size_t)h + i];
+    Q->uv[2 * (size_t)v] = uv[0], Q->uv[2 * (size_t)v + 1] = uv[1];
 }
 
 sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stats *stats, sq_error *err)
@@ -41,9 +103,17 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
     memset(stats, 0, sizeof *stats);
     const sq_mesh *m = &M->mesh;
     uint32_t nv = Q->nv, nq = Q->nq;
-    for (uint32_t f = 0; f < nq; f++) stats->folded_before += folded(Q, f);
+    double *fn = sq_mesh_vertex_normals(m);
+    /* edges the moves may not shorten below: 1e-9 of the diagonal (step 6
+     * refuses 1e-12) */
+    double min_edge = 1e-9 * sq_bbox_diagonal(m->nv, m->pos);
+    if (!fn) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (untangling %u quads)", nq);
+    for (uint32_t f = 0; f < nq; f++) stats->folded_before += quad_margin(M, Q, fn, min_edge, f) < 0.0;
     stats->folded_after = stats->folded_before;
-    if (!stats->folded_before) return SQ_OK;
+    if (!stats->folded_before) {
+        free(fn);
+        return SQ_OK;
+    }
     uint32_t *tri = sq_mesh_triangles(m);
     uint8_t *mark = calloc(nv, 1), *next = calloc(nv, 1);
     sq_quad_star S = {NULL, NULL, NULL};
@@ -59,19 +129,23 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
      * once from each side, the mesh being closed and manifold) */
     if ((st = sq_quad_star_build(nv, nq, Q->quad, &S, err))) goto done;
     for (uint32_t f = 0; f < nq; f++)
-        if (folded(Q, f))
+        if (quad_margin(M, Q, fn, min_edge, f) < 0.0)
             for (int k = 0; k < 4; k++) mark[Q->quad[4 * (size_t)f + k]] = 1;
     for (int round = 0; round < SQ_UNTANGLE_ROUNDS; round++) {
         uint32_t moved = 0;
         for (uint32_t v = 0; v < nv; v++) {
             if (!mark[v] || Q->valence[v] != 4) continue;
-            double cur = sq_quad_star_worst_margin(&S, Q->pos, Q->quad, v), old[3];
-            if (cur >= 0.5) continue;
+            star_score cur = star_margin(M, &S, Q, fn, min_edge, v);
+            double old[3], old_bary[3];
+            uint32_t old_face = Q->loc_face[v];
+            memcpy(old_bary, Q->loc_bary + 3 * (size_t)v, sizeof old_bary);
+            if (cur.worst >= 0.5) continue;
             memcpy(old, Q->pos + 3 * (size_t)v, sizeof old);
             /* candidate targets: the mean of the edge neighbours, the mean
              * of the quads' corners around v, then each edge neighbour */
-            uint32_t o = S.off[v], deg = S.off[v + 1] - o, ncand = 2 + 2 * deg;
-            double best = cur, best_p[3] = {0, 0, 0}, best_bary[3] = {0, 0, 0};
+            uint32_t o = S.off[v], deg = S.off[v + 1] - o, ncand = 2 + 3 * deg;
+            star_score best = cur;
+            double best_p[3] = {0, 0, 0}, best_bary[3] = {0, 0, 0};
             uint32_t best_tri = UINT32_MAX;
             for (uint32_t c = 0; c < ncand; c++) {
                 double tgt[3] = {0, 0, 0};
@@ -86,23 +160,38 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
                     for (int i = 0; i < 3; i++) tgt[i] /= n;
                 } else if (c < 2 + deg) {
                     memcpy(tgt, Q->pos + 3 * (size_t)S.next[o + c - 2], sizeof tgt);
-                } else { /* the corner that makes quad k a parallelogram */
+                } else if (c < 2 + 2 * deg) { /* the corner that makes quad k a parallelogram */
                     const uint32_t *q = Q->quad + 4 * (size_t)S.quad[o + c - 2 - deg];
                     int j = 0;
                     while (q[j] != v) j++;
                     for (int i = 0; i < 3; i++)
                         tgt[i] = Q->pos[3 * (size_t)q[(j + 1) % 4] + i] + Q->pos[3 * (size_t)q[(j + 3) % 4] + i] -
                                  Q->pos[3 * (size_t)q[(j + 2) % 4] + i];
+                } else { /* v mirrored across the diagonal of quad k that it does not touch: turns
+                          * its half of a quad lying upside down (a bow tie, which the next moves
+                          * of the other corners undo) */
+                    const uint32_t *q = Q->quad + 4 * (size_t)S.quad[o + c - 2 - 2 * deg];
+                    int j = 0;
+                    while (q[j] != v) j++;
+                    const double *a = Q->pos + 3 * (size_t)q[(j + 1) % 4], *b = Q->pos + 3 * (size_t)q[(j + 3) % 4];
+                    double d[3], w[3], dd = 0, t = 0;
+                    for (int i = 0; i < 3; i++) d[i] = b[i] - a[i], w[i] = old[i] - a[i], dd += d[i] * d[i], t += w[i] * d[i];
+                    t = dd > 0 ? t / dd : 0;
+                    for (int i = 0; i < 3; i++) tgt[i] = 2 * (a[i] + t * d[i]) - old[i];
                 }
-                for (double step = c < 2 ? 1.0 : 0.5; step > 1.0 / 64; step *= 0.5) {
+                for (double step = c < 2 || c >= 2 + 2 * deg ? 1.0 : 0.5; step > 1.0 / 64; step *= 0.5) {
                     double p[3];
                     for (int i = 0; i < 3; i++) p[i] = old[i] + step * (tgt[i] - old[i]);
                     sq_cp_hit hit;
                     sq_cp_tree_query(&tree, p, &hit);
                     memcpy(Q->pos + 3 * (size_t)v, hit.point, sizeof hit.point);
-                    double w = sq_quad_star_worst_margin(&S, Q->pos, Q->quad, v);
+                    Q->loc_face[v] = hit.tri;
+                    memcpy(Q->loc_bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
+                    star_score w = star_margin(M, &S, Q, fn, min_edge, v);
                     memcpy(Q->pos + 3 * (size_t)v, old, sizeof old);
-                    if (w > best) {
+                    Q->loc_face[v] = old_face;
+                    memcpy(Q->loc_bary + 3 * (size_t)v, old_bary, sizeof old_bary);
+                    if (star_better(w, best)) {
                         best = w, best_tri = hit.tri;
                         memcpy(best_p, hit.point, sizeof best_p);
                         memcpy(best_bary, hit.bary, sizeof best_bary);
@@ -110,17 +199,14 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
                     }
                 }
                 if (best_tri != UINT32_MAX && c == 0) break; /* the plain mean did it */
+                if (best_tri != UINT32_MAX && c == 1 + 2 * deg) break; /* mirror images: the last resort */
             }
             if (best_tri == UINT32_MAX) continue;
-            memcpy(Q->pos + 3 * (size_t)v, best_p, sizeof best_p);
-            Q->loc_face[v] = best_tri;
-            memcpy(Q->loc_bary + 3 * (size_t)v, best_bary, sizeof best_bary);
-            /* the map's UV there (no longer an integer point) */
-            uint32_t h = m->f_he[best_tri];
-            double uv[2] = {0, 0};
-            for (int k = 0; k < 3; k++, h = m->he_next[h])
-                for (int i = 0; i < 2; i++) uv[i] += best_bary[k] * M->he_uv[2 * (size_t)h + i];
-            Q->uv[2 * (size_t)v] = uv[0], Q->uv[2 * (size_t)v + 1] = uv[1];
+            sq_cp_hit bh;
+            memcpy(bh.point, best_p, sizeof bh.point);
+            bh.tri = best_tri;
+            memcpy(bh.bary, best_bary, sizeof bh.bary);
+            place(M, Q, v, &bh);
             moved++;
         }
         stats->moves += moved;
@@ -129,7 +215,7 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
         uint32_t still = 0;
         memset(next, 0, nv);
         for (uint32_t f = 0; f < nq; f++)
-            if (folded(Q, f)) {
+            if (quad_margin(M, Q, fn, min_edge, f) < 0.0) {
                 still++;
                 for (int k = 0; k < 4; k++) next[Q->quad[4 * (size_t)f + k]] = 1;
             }
@@ -145,6 +231,6 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
 done:
     sq_cp_tree_free(&tree);
     sq_quad_star_free(&S);
-    free(tri), free(mark), free(next);
+    free(tri), free(mark), free(next), free(fn);
     return st;
 }

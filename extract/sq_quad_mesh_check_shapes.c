@@ -3,9 +3,10 @@
 #include "sq_extract.h"
 #include "sq_smooth.h"
 
-sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, double diag, sq_quad_shapes *out, sq_error *err)
+sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, const sq_mesh *m, const uint32_t *vert_face,
+                                    const double *vert_bary, double diag, sq_quad_shapes *out, sq_error *err)
 {
-    sq_quad_shapes s = {0, 0, 0, UINT32_MAX, UINT32_MAX, UINT32_MAX};
+    sq_quad_shapes s = {0, 0, 0, 0, UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};
     double eps_len = 1e-12 * diag, eps_area = 1e-12 * diag * diag;
     for (uint32_t f = 0; f < Q->nq; f++) {
         const uint32_t *q = Q->quad + 4 * (size_t)f;
@@ -19,6 +20,10 @@ sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, double diag, sq_quad_
             if (!s.tiny++) s.first_tiny = f;
         }
         if (sq_quad_fold_margin(p[0], p[1], p[2], p[3]) < 0.0 && !s.folded++) s.first_folded = f;
+    }
+    if (m && vert_face && vert_bary) {
+        sq_status st = sq_quad_mesh_count_turned(Q, m, vert_face, vert_bary, &s.turned, &s.first_turned, err);
+        if (st) return st;
     }
     if (out) *out = s;
     if (s.short_edge)
@@ -38,5 +43,11 @@ sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, double diag, sq_quad_
                             "than 90 degrees), first: quad %u: the map is too distorted at this grid "
                             "size",
                             s.folded, s.folded == 1 ? " is" : "s are", s.first_folded + 1);
+    if (s.turned)
+        return sq_error_set(err, SQ_ERR_DEGENERATE,
+                            "%u quad%s turned over on the surface (every corner facing away from it: "
+                            "a flipped face), first: quad %u: the map is too distorted at this "
+                            "grid size",
+                            s.turned, s.turned == 1 ? " is" : "s are", s.first_turned + 1);
     return SQ_OK;
 }

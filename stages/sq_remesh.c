@@ -23,6 +23,7 @@
 
 #include "sq_clock.h"
 #include "sq_cgal_adapter.h"
+#include "sq_closest_point.h"
 #include "sq_cones.h"
 
 /* The share of the whole run each stage is given in the progress report
@@ -91,6 +92,30 @@ static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_e
     if (!tri) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
     sq_status st = sq_cgal_self_intersections(m->nv, m->pos, m->nf, tri, pairs, NULL, 0, err);
     free(tri);
+    return st;
+}
+
+/* Step 6 of extract on the final quads (sq_quad_mesh_check_shapes): their
+ * vertices lie on m (smoothing and repair project them), each located on
+ * its nearest face of m for the turned-over test. */
+static sq_status check_final_shapes(const sq_mesh *m, const sq_quad_mesh *Q, sq_error *err)
+{
+    uint32_t *tri = sq_mesh_triangles(m), *face = malloc(((size_t)Q->nv + 1) * sizeof *face);
+    double *bary = malloc(3 * ((size_t)Q->nv + 1) * sizeof *bary);
+    sq_cp_tree tree;
+    memset(&tree, 0, sizeof tree);
+    sq_status st = SQ_OK;
+    if (!tri || !face || !bary) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quad shapes)");
+    if (!st) st = sq_cp_tree_build(m->nv, m->pos, m->nf, tri, &tree, err);
+    for (uint32_t v = 0; v < Q->nv && !st; v++) {
+        sq_cp_hit hit;
+        sq_cp_tree_query(&tree, Q->pos + 3 * (size_t)v, &hit);
+        face[v] = hit.tri;
+        memcpy(bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
+    }
+    if (!st) st = sq_quad_mesh_check_shapes(Q, m, face, bary, sq_bbox_diagonal(m->nv, m->pos), NULL, err);
+    sq_cp_tree_free(&tree);
+    free(tri), free(face), free(bary);
     return st;
 }
 
@@ -352,7 +377,7 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
         }
     }
     /* no quad the referee would reject as degenerate */
-    st = sq_quad_mesh_check_shapes(&out->quads, sq_bbox_diagonal(m->nv, m->pos), NULL, err);
+    st = check_final_shapes(m, &out->quads, err);
     stats->t_verify = sq_now() - t1;
     if (st) goto fail;
     report(&pc, 1);

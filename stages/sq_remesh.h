@@ -24,7 +24,7 @@
  *     diagonal) must not intersect itself where the input does not
  *     (CGAL's exact test, sq_cgal_adapter.h; where it does, the quads
  *     involved are relaxed on the surface first, sq_remesh_repair.c), and
- *     no quad may be folded,
+ *     no quad may be folded or turned over on the surface,
  *     have an edge shorter than 1e-12 of the diagonal or an area below
  *     1e-12 of its square (sq_quad_mesh_check_shapes); else the run fails.
  *
@@ -33,7 +33,8 @@
  * of valence k is a vertex of k quads), every vertex on the input surface,
  * no quad folded (the referee's test: a quad is folded when in both of its
  * triangulations the two triangles' normals differ by more than 90
- * degrees), and, where the input does not intersect itself, no two of the
+ * degrees), none turned over (every corner facing away from the surface),
+ * and, where the input does not intersect itself, no two of the
  * quads' triangles intersecting. On failure nothing is returned, the error
  * names the stage (sq_remesh_stats.stage) and the cause.
  *

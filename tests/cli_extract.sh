@@ -88,7 +88,7 @@ for part in ("faces", "topology", "valence"):
     assert r[part]["passed"], (part, r[part]["failures"])
 d = r["degeneracy"]
 assert d["repeated_vertex"] == 0 and d["tiny_area"] == 0 and d["zero_length_edge"] == 0, d
-assert d["folded"] == 0 and j["degenerate"] == {"short_edge": 0, "tiny": 0, "folded": 0}, (d, j)
+assert d["folded"] == 0 and j["degenerate"] == {"short_edge": 0, "tiny": 0, "folded": 0, "turned": 0}, (d, j)
 assert r["fidelity"]["quad_vertices_to_input"]["max_rel"] < 1e-9, r["fidelity"]
 print("%d quads, %d vertices, %d irregular, genus %d; referee: faces, topology, valences, cones "
       "PASS, %d folded quads; %.3f s" % (nf, nv, j["irregular"], r["topology"]["genus"],

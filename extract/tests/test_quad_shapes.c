@@ -4,7 +4,10 @@
  * one place (a zero-length edge), and with a top squashed onto a line (zero
  * area, no zero-length edge) is refused with SQ_ERR_DEGENERATE, the counts
  * and the first quad named (1-based). Each judged against the referee's
- * definitions (check_quad.py [3]), worked out by hand here. */
+ * definitions (check_quad.py [3]), worked out by hand here. Two quads side
+ * by side on a plane, one of them listed clockwise: turned over on the
+ * surface (not folded: it is flat), refused; the same pair on the plane
+ * seen from below: both turned. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -33,7 +36,7 @@ static sq_status judge(double *pos, sq_quad_shapes *s, sq_error *err)
     sq_quad_mesh Q;
     memset(&Q, 0, sizeof Q);
     Q.nv = 8, Q.nq = 6, Q.pos = pos, Q.quad = (uint32_t *)cube_quads;
-    return sq_quad_mesh_check_shapes(&Q, sq_bbox_diagonal(8, pos), s, err);
+    return sq_quad_mesh_check_shapes(&Q, NULL, NULL, NULL, sq_bbox_diagonal(8, pos), s, err);
 }
 
 static void test_cube_passes(void **state)
@@ -103,6 +106,53 @@ static void test_zero_area(void **state)
     assert_non_null(strstr(err.msg, "area <= 1e-12"));
 }
 
+/* the plane z = 0 as one triangle facing +z (or -z: down) */
+static void plane(sq_mesh *m, double *pos, uint32_t *next, uint32_t *vert, uint32_t *fhe, int down)
+{
+    static const double p[9] = {-10, -10, 0, 10, -10, 0, 0, 10, 0};
+    memcpy(pos, p, sizeof p);
+    memset(m, 0, sizeof *m);
+    for (uint32_t h = 0; h < 3; h++) next[h] = (h + 1) % 3, vert[h] = down ? 2 - h : h;
+    fhe[0] = 0;
+    m->nv = 3, m->nf = 1, m->nh = 3, m->pos = pos, m->he_next = next, m->he_vert = vert, m->f_he = fhe;
+}
+
+static void test_turned_quad(void **state)
+{
+    (void)state;
+    /* (0,0) (1,0) (2,0) / (0,1) (1,1) (2,1) at z = 0 */
+    double qpos[18];
+    for (int v = 0; v < 6; v++) qpos[3 * v] = v % 3, qpos[3 * v + 1] = v / 3, qpos[3 * v + 2] = 0;
+    uint32_t quads[8] = {0, 1, 4, 3, 1, 4, 5, 2}; /* the second clockwise */
+    uint32_t vface[6] = {0, 0, 0, 0, 0, 0};
+    double vbary[18];
+    for (int v = 0; v < 6; v++) vbary[3 * v] = vbary[3 * v + 1] = vbary[3 * v + 2] = 1.0 / 3;
+    sq_quad_mesh Q;
+    memset(&Q, 0, sizeof Q);
+    Q.nv = 6, Q.nq = 2, Q.pos = qpos, Q.quad = quads;
+    sq_mesh m;
+    double mpos[9];
+    uint32_t next[3], vert[3], fhe[1];
+    plane(&m, mpos, next, vert, fhe, 0);
+    sq_quad_shapes s;
+    sq_error err;
+    assert_int_equal(sq_quad_mesh_check_shapes(&Q, &m, vface, vbary, 4.0, &s, &err), SQ_ERR_DEGENERATE);
+    assert_int_equal(s.folded, 0);
+    assert_int_equal(s.turned, 1);
+    assert_int_equal(s.first_turned, 1);
+    assert_non_null(strstr(err.msg, "quad 2"));
+    assert_non_null(strstr(err.msg, "turned over"));
+    /* without the surface: nothing the referee rejects */
+    assert_int_equal(sq_quad_mesh_check_shapes(&Q, NULL, NULL, NULL, 4.0, &s, &err), SQ_OK);
+    /* both counterclockwise: passes; on the plane facing down: both turned */
+    quads[4] = 1, quads[5] = 2, quads[6] = 5, quads[7] = 4;
+    assert_int_equal(sq_quad_mesh_check_shapes(&Q, &m, vface, vbary, 4.0, &s, &err), SQ_OK);
+    plane(&m, mpos, next, vert, fhe, 1);
+    assert_int_equal(sq_quad_mesh_check_shapes(&Q, &m, vface, vbary, 4.0, &s, &err), SQ_ERR_DEGENERATE);
+    assert_int_equal(s.turned, 2);
+    assert_int_equal(s.first_turned, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -110,6 +160,7 @@ int main(void)
         cmocka_unit_test(test_bow_tie_is_folded),
         cmocka_unit_test(test_coincident_corners),
         cmocka_unit_test(test_zero_area),
+        cmocka_unit_test(test_turned_quad),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
