@@ -204,13 +204,16 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
     printf(", T-mesh of %u rectangles, %.2f s\n", s->quantize.faces, s->t_quantize);
     printf("extract       %u quads, %u vertices, %u irregular; %u folded quads relaxed; %.2f s\n",
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before, s->t_extract);
-    if (s->smoothed)
+    if (s->smoothed) {
         printf("smooth        mean |angle-90| %.2f -> %.2f degrees, min angle %.1f -> %.1f, %d iterations,\n"
                "              %u vertices pinned on sharp points, %.2f s\n",
                s->smooth.before.angle_mean_dev_deg, s->smooth.after.angle_mean_dev_deg,
                s->smooth.before.angle_min_deg, s->smooth.after.angle_min_deg, s->smooth.iterations,
                s->smooth.pinned, s->t_smooth);
-    else if (s->smooth_reverted)
+        if (s->smooth_kept)
+            printf("              %u vertices kept unsmoothed around quads smoothing turned over\n",
+                   s->smooth_kept);
+    } else if (s->smooth_reverted)
         printf("smooth        not kept (%s), %.2f s\n", s->smooth_why, s->t_smooth);
     else
         printf("smooth        off\n");
@@ -266,7 +269,8 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     sq_json_double(stdout, s->smooth.before.angle_mean_dev_deg);
     printf(", \"angle_mean_dev_after\": ");
     sq_json_double(stdout, s->smooth.after.angle_mean_dev_deg);
-    printf(", \"iterations\": %d, \"pinned\": %u, \"why\": ", s->smooth.iterations, s->smooth.pinned);
+    printf(", \"iterations\": %d, \"pinned\": %u, \"kept_unsmoothed\": %u, \"why\": ", s->smooth.iterations,
+           s->smooth.pinned, s->smooth_kept);
     sq_json_string(stdout, s->smooth_why);
     printf(", \"seconds\": %.6f}", s->t_smooth);
     if (surf->S.np) printf(",\n  \"export\": {\"patches\": %u, \"seconds\": %.6f}", surf->S.np, surf->seconds);

@@ -161,13 +161,14 @@ sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, const sq_mesh *m, con
  * quad is turned.
  * sq_quad_mesh_count_turned: the turned quads of Q on the triangle mesh m,
  * vertex v at barycentric vert_bary[3v..] in face vert_face[v] of m;
- * *first (may be NULL) the first (0-based, UINT32_MAX: none). O(nq + m's
- * size). */
+ * *first (may be NULL) the first (0-based, UINT32_MAX: none), flags (nq,
+ * may be NULL) 1 at each. O(nq + m's size). */
 double *sq_mesh_vertex_normals(const sq_mesh *m);
 void sq_mesh_normal_at(const sq_mesh *m, const double *vn, uint32_t f, const double bary[3], double n[3]);
 double sq_quad_turn_margin(const double *const p[4], const double *const n[4]);
 sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, const uint32_t *vert_face,
-                                    const double *vert_bary, uint32_t *count, uint32_t *first, sq_error *err);
+                                    const double *vert_bary, uint32_t *count, uint32_t *first, uint8_t *flags,
+                                    sq_error *err);
 
 #ifdef __cplusplus
 }

@@ -22,7 +22,7 @@ sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, const sq_mesh *m, con
         if (sq_quad_fold_margin(p[0], p[1], p[2], p[3]) < 0.0 && !s.folded++) s.first_folded = f;
     }
     if (m && vert_face && vert_bary) {
-        sq_status st = sq_quad_mesh_count_turned(Q, m, vert_face, vert_bary, &s.turned, &s.first_turned, err);
+        sq_status st = sq_quad_mesh_count_turned(Q, m, vert_face, vert_bary, &s.turned, &s.first_turned, NULL, err);
         if (st) return st;
     }
     if (out) *out = s;

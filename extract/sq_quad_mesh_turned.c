@@ -66,7 +66,8 @@ double sq_quad_turn_margin(const double *const p[4], const double *const n[4])
 }
 
 sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, const uint32_t *vert_face,
-                                    const double *vert_bary, uint32_t *count, uint32_t *first, sq_error *err)
+                                    const double *vert_bary, uint32_t *count, uint32_t *first, uint8_t *flags,
+                                    sq_error *err)
 {
     uint32_t n = 0;
     if (first) *first = UINT32_MAX;
@@ -80,7 +81,9 @@ sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, con
         const uint32_t *q = Q->quad + 4 * (size_t)f;
         const double *p[4], *nk[4];
         for (int k = 0; k < 4; k++) p[k] = Q->pos + 3 * (size_t)q[k], nk[k] = qn + 3 * (size_t)q[k];
-        if (sq_quad_turn_margin(p, nk) < 0.0 && !n++ && first) *first = f;
+        int t = sq_quad_turn_margin(p, nk) < 0.0;
+        if (flags) flags[f] = (uint8_t)t;
+        if (t && !n++ && first) *first = f;
     }
     free(vn), free(qn);
     *count = n;

@@ -95,17 +95,16 @@ static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_e
     return st;
 }
 
-/* Step 6 of extract on the final quads (sq_quad_mesh_check_shapes): their
- * vertices lie on m (smoothing and repair project them), each located on
- * its nearest face of m for the turned-over test. */
-static sq_status check_final_shapes(const sq_mesh *m, const sq_quad_mesh *Q, sq_error *err)
+/* The quads of Q turned over on m (sq_quad_mesh_count_turned), each vertex
+ * located on its nearest face of m (smoothing and repair keep them on it). */
+static sq_status turned_on(const sq_mesh *m, const sq_quad_mesh *Q, uint32_t *count, uint8_t *flags, sq_error *err)
 {
     uint32_t *tri = sq_mesh_triangles(m), *face = malloc(((size_t)Q->nv + 1) * sizeof *face);
     double *bary = malloc(3 * ((size_t)Q->nv + 1) * sizeof *bary);
     sq_cp_tree tree;
     memset(&tree, 0, sizeof tree);
     sq_status st = SQ_OK;
-    if (!tri || !face || !bary) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quad shapes)");
+    if (!tri || !face || !bary) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (turned quads)");
     if (!st) st = sq_cp_tree_build(m->nv, m->pos, m->nf, tri, &tree, err);
     for (uint32_t v = 0; v < Q->nv && !st; v++) {
         sq_cp_hit hit;
@@ -113,9 +112,75 @@ static sq_status check_final_shapes(const sq_mesh *m, const sq_quad_mesh *Q, sq_
         face[v] = hit.tri;
         memcpy(bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
     }
-    if (!st) st = sq_quad_mesh_check_shapes(Q, m, face, bary, sq_bbox_diagonal(m->nv, m->pos), NULL, err);
+    if (!st) st = sq_quad_mesh_count_turned(Q, m, face, bary, count, NULL, flags, err);
     sq_cp_tree_free(&tree);
     free(tri), free(face), free(bary);
+    return st;
+}
+
+/* Step 6 of extract on the final quads (sq_quad_mesh_check_shapes), the
+ * turned-over test on m included. */
+static sq_status check_final_shapes(const sq_mesh *m, const sq_quad_mesh *Q, sq_error *err)
+{
+    sq_quad_shapes sh;
+    sq_status st = sq_quad_mesh_check_shapes(Q, NULL, NULL, NULL, sq_bbox_diagonal(m->nv, m->pos), &sh, err);
+    if (st) return st;
+    uint32_t turned = 0;
+    if ((st = turned_on(m, Q, &turned, NULL, err))) return st;
+    if (turned)
+        return sq_error_set(err, SQ_ERR_DEGENERATE,
+                            "%u quad%s turned over on the surface (every corner facing away from it: "
+                            "a flipped face): the map is too distorted at this grid size",
+                            turned, turned == 1 ? " is" : "s are");
+    return SQ_OK;
+}
+
+/* Where smoothing turned quads over: the vertices of those quads, then
+ * also 1 to 16 rings around them, back at their unsmoothed places (keep),
+ * until no quad is turned or folded. *turned: the turned quads left (0
+ * when that worked, else the count with all of them smoothed); *kept: the
+ * vertices put back. */
+static sq_status revert_turned(const sq_mesh *m, sq_quad_mesh *Q, const double *keep, uint32_t *turned,
+                               uint32_t *kept, sq_error *err)
+{
+    *kept = 0;
+    uint8_t *flags = malloc((size_t)Q->nq + 1), *mark = calloc((size_t)Q->nv + 1, 1),
+            *grow = malloc((size_t)Q->nv + 1);
+    double *smoothed = malloc(3 * ((size_t)Q->nv + 1) * sizeof *smoothed);
+    sq_quad_star S = {NULL, NULL, NULL};
+    sq_status st = SQ_OK;
+    if (!flags || !mark || !grow || !smoothed) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (smoothing)");
+    if (!st) st = turned_on(m, Q, turned, flags, err);
+    if (!st && *turned) st = sq_quad_star_build(Q->nv, Q->nq, Q->quad, &S, err);
+    if (!st && *turned) {
+        memcpy(smoothed, Q->pos, 3 * (size_t)Q->nv * sizeof *smoothed);
+        for (uint32_t f = 0; f < Q->nq; f++)
+            if (flags[f])
+                for (int k = 0; k < 4; k++) mark[Q->quad[4 * (size_t)f + k]] = 1;
+        uint32_t left = *turned;
+        for (int ring = 0; ring <= 16 && left && !st; ring++) {
+            if (ring) {
+                memcpy(grow, mark, Q->nv);
+                for (uint32_t v = 0; v < Q->nv; v++)
+                    if (mark[v])
+                        for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++) grow[S.next[k]] = 1;
+                memcpy(mark, grow, Q->nv);
+            }
+            *kept = 0;
+            for (uint32_t v = 0; v < Q->nv; v++)
+                if (mark[v]) memcpy(Q->pos + 3 * (size_t)v, keep + 3 * (size_t)v, 3 * sizeof *keep), ++*kept;
+            if ((st = turned_on(m, Q, &left, NULL, err))) break;
+            for (uint32_t f = 0; f < Q->nq && !left; f++) {
+                const uint32_t *q = Q->quad + 4 * (size_t)f;
+                left += sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1],
+                                            Q->pos + 3 * (size_t)q[2], Q->pos + 3 * (size_t)q[3]) < 0.0;
+            }
+        }
+        if (!st && left) memcpy(Q->pos, smoothed, 3 * (size_t)Q->nv * sizeof *smoothed), *kept = 0;
+        else if (!st) *turned = 0;
+    }
+    sq_quad_star_free(&S);
+    free(flags), free(mark), free(grow), free(smoothed);
     return st;
 }
 
@@ -148,9 +213,15 @@ static sq_status smooth_stage(const sq_mesh *m, sq_quad_mesh *Q, progress_ctx *p
         free(keep);
         return sq_error_set(err, st, "%s", serr.msg);
     }
-    if (st || stats->smooth.after.folded > 0) {
+    uint32_t turned = 0;
+    if (!st && !stats->smooth.after.folded) st = revert_turned(m, Q, keep, &turned, &stats->smooth_kept, &serr);
+    if (st == SQ_ERR_NOMEM) {
+        free(keep);
+        return sq_error_set(err, st, "%s", serr.msg);
+    }
+    if (st || stats->smooth.after.folded > 0 || turned) {
         snprintf(stats->smooth_why, sizeof stats->smooth_why, "%.150s",
-                 st ? serr.msg : "a quad folded after smoothing");
+                 st ? serr.msg : turned ? "a quad turned over after smoothing" : "a quad folded after smoothing");
         memcpy(Q->pos, keep, 3 * (size_t)Q->nv * sizeof *keep);
         free(keep);
         stats->smooth_reverted = 1;

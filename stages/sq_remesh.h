@@ -15,11 +15,13 @@
  *  5. quantize: the integer-grid map at the requested size, with its own
  *     optimization step (sq_quantize);
  *  6. extract: the quad mesh (sq_extract), folded quads relaxed on the
- *     surface (sq_extract_untangle); a quad still folded fails the run;
+ *     surface (sq_extract_untangle); a quad still folded or turned over
+ *     fails the run;
  *  7. smooth (unless no_smoothing): the quads' vertices moved on the input
  *     surface toward right angles and even edges (sq_smooth_quads: Ceres,
  *     no step folds a quad); the unsmoothed quads are kept when smoothing
- *     fails or its result fails the verify stage where theirs passes;
+ *     fails, turns a quad over, or its result fails the verify stage where
+ *     theirs passes;
  *  8. verify: the quad surface (each quad split along its shorter
  *     diagonal) must not intersect itself where the input does not
  *     (CGAL's exact test, sq_cgal_adapter.h; where it does, the quads
@@ -115,6 +117,8 @@ typedef struct sq_remesh_stats {
     int smooth_reverted;           /* 1: smoothed, but the unsmoothed quads  */
                                    /* were returned (smooth_why says why)    */
     char smooth_why[160];
+    uint32_t smooth_kept;          /* vertices left unsmoothed: around quads  */
+                                   /* that smoothing turned over             */
     uint64_t self_intersections;   /* intersecting pairs of the quads'       */
                                    /* triangles (each quad split along its   */
                                    /* shorter diagonal; CGAL)                */
