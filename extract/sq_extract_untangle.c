@@ -10,16 +10,17 @@
  * right; the positions are not. Each round moves every vertex of such a
  * quad that is not a cone towards the mean of its edge neighbours (else
  * the mean of its quads' corners, else one neighbour, else the point that
- * makes one of its quads a parallelogram, else its mirror image across
- * the diagonal of one of its quads that it does not touch), projected back
- * onto the surface
- * (the nearest point of the map's mesh: a barycentric combination of one
- * triangle's corners), with the step halved until the worst margin of the
- * quads around the vertex rises (per quad the smaller of its fold and turn
- * margins); a move that does not raise it is not made. Rounds without
- * progress widen the moved set by one ring; at most SQ_UNTANGLE_ROUNDS
- * rounds. Cones never move, every vertex stays on the surface, the
- * connectivity is untouched.
+ * makes one of its quads a parallelogram; only where none of these helps,
+ * its mirror image across the diagonal of one of its quads that it does
+ * not touch), projected back onto the surface (the nearest point of the
+ * map's mesh: a barycentric combination of one triangle's corners), with
+ * the step halved until the quads around the vertex are better off: a
+ * higher worst margin (per quad the smaller of its fold and turn margins),
+ * or the worst no lower, no more bad quads and less badness in sum. No
+ * move brings two corners of a quad within 1e-9 of the diagonal. Rounds
+ * without progress widen the moved set by one ring; at most
+ * SQ_UNTANGLE_ROUNDS rounds. Cones never move, every vertex stays on the
+ * surface, the connectivity is untouched.
  *
  * Cost: the map's vertex normals and one closest-point tree over its
  * triangles, then work proportional to the bad quads' neighbourhoods. */
@@ -103,15 +104,15 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
     memset(stats, 0, sizeof *stats);
     const sq_mesh *m = &M->mesh;
     uint32_t nv = Q->nv, nq = Q->nq;
-    double *fn = sq_mesh_vertex_normals(m);
+    double *vn = sq_mesh_vertex_normals(m);
     /* edges the moves may not shorten below: 1e-9 of the diagonal (step 6
      * refuses 1e-12) */
     double min_edge = 1e-9 * sq_bbox_diagonal(m->nv, m->pos);
-    if (!fn) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (untangling %u quads)", nq);
-    for (uint32_t f = 0; f < nq; f++) stats->folded_before += quad_margin(M, Q, fn, min_edge, f) < 0.0;
+    if (!vn) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (untangling %u quads)", nq);
+    for (uint32_t f = 0; f < nq; f++) stats->folded_before += quad_margin(M, Q, vn, min_edge, f) < 0.0;
     stats->folded_after = stats->folded_before;
     if (!stats->folded_before) {
-        free(fn);
+        free(vn);
         return SQ_OK;
     }
     uint32_t *tri = sq_mesh_triangles(m);
@@ -129,13 +130,13 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
      * once from each side, the mesh being closed and manifold) */
     if ((st = sq_quad_star_build(nv, nq, Q->quad, &S, err))) goto done;
     for (uint32_t f = 0; f < nq; f++)
-        if (quad_margin(M, Q, fn, min_edge, f) < 0.0)
+        if (quad_margin(M, Q, vn, min_edge, f) < 0.0)
             for (int k = 0; k < 4; k++) mark[Q->quad[4 * (size_t)f + k]] = 1;
     for (int round = 0; round < SQ_UNTANGLE_ROUNDS; round++) {
         uint32_t moved = 0;
         for (uint32_t v = 0; v < nv; v++) {
             if (!mark[v] || Q->valence[v] != 4) continue;
-            star_score cur = star_margin(M, &S, Q, fn, min_edge, v);
+            star_score cur = star_margin(M, &S, Q, vn, min_edge, v);
             double old[3], old_bary[3];
             uint32_t old_face = Q->loc_face[v];
             memcpy(old_bary, Q->loc_bary + 3 * (size_t)v, sizeof old_bary);
@@ -187,7 +188,7 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
                     memcpy(Q->pos + 3 * (size_t)v, hit.point, sizeof hit.point);
                     Q->loc_face[v] = hit.tri;
                     memcpy(Q->loc_bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
-                    star_score w = star_margin(M, &S, Q, fn, min_edge, v);
+                    star_score w = star_margin(M, &S, Q, vn, min_edge, v);
                     memcpy(Q->pos + 3 * (size_t)v, old, sizeof old);
                     Q->loc_face[v] = old_face;
                     memcpy(Q->loc_bary + 3 * (size_t)v, old_bary, sizeof old_bary);
@@ -215,7 +216,7 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
         uint32_t still = 0;
         memset(next, 0, nv);
         for (uint32_t f = 0; f < nq; f++)
-            if (quad_margin(M, Q, fn, min_edge, f) < 0.0) {
+            if (quad_margin(M, Q, vn, min_edge, f) < 0.0) {
                 still++;
                 for (int k = 0; k < 4; k++) next[Q->quad[4 * (size_t)f + k]] = 1;
             }
@@ -231,6 +232,6 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
 done:
     sq_cp_tree_free(&tree);
     sq_quad_star_free(&S);
-    free(tri), free(mark), free(next), free(fn);
+    free(tri), free(mark), free(next), free(vn);
     return st;
 }
