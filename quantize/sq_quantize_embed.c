@@ -181,8 +181,12 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
         for (uint32_t l = 0; l < nl; l++) memcpy(lpos + 3 * (size_t)l, S->pos + 3 * (size_t)lv[l], 3 * sizeof *lpos);
         sq_patch P = {nl, tri_off[p + 1] - tri_off[p], old_uv, ltri, W, H, A, B, fixed, lpos};
         int method = 0;
-        if ((st = sq_patch_embed(&P, new_uv, &method, failed && !nfailed ? err : &e_patch))) {
-            if (st != SQ_ERR_SOLVER || !failed) break;
+        sq_error *pe = failed && nfailed ? &e_patch : err; /* the first failure's message kept */
+        if ((st = sq_patch_embed(&P, new_uv, &method, pe))) {
+            if (st != SQ_ERR_SOLVER || !failed) {
+                if (pe != err && err) *err = e_patch;
+                break;
+            }
             failed[p] = 1, nfailed++, st = SQ_OK; /* the next patch; the caller refines this one */
             continue;
         }
