@@ -10,20 +10,26 @@
  * right; the positions are not. Each round moves every vertex of such a
  * quad that is not a cone towards the mean of its edge neighbours (else
  * the mean of its quads' corners, else one neighbour, else the point that
- * makes one of its quads a parallelogram; only where none of these helps,
- * its mirror image across the diagonal of one of its quads that it does
- * not touch), projected back onto the surface (the nearest point of the
- * map's mesh: a barycentric combination of one triangle's corners), with
- * the step halved until the quads around the vertex are better off: a
- * higher worst margin (per quad the smaller of its fold and turn margins),
- * or the worst no lower, no more bad quads and less badness in sum. No
- * move brings two corners of a quad within 1e-9 of the diagonal. Rounds
- * without progress widen the moved set by one ring; at most
- * SQ_UNTANGLE_ROUNDS rounds. Cones never move, every vertex stays on the
- * surface, the connectivity is untouched.
+ * makes one of its quads a parallelogram, else its mirror image across the
+ * diagonal of one of its quads that it does not touch: the first half of
+ * turning an upside-down quad back), projected back onto the surface (the
+ * nearest point of the map's mesh: a barycentric combination of one
+ * triangle's corners), with the step halved until the quads around the
+ * vertex are better off: a higher worst margin (per quad the smaller of
+ * its fold and turn margins), or the worst no lower, no more bad quads and
+ * less badness in sum. No move brings two corners of a quad within 1e-9
+ * of the diagonal, or its area below 1e-18 of the diagonal's square.
+ * Rounds without progress widen the moved set by one ring; at most
+ * SQ_UNTANGLE_ROUNDS rounds. The moves are greedy and where they get stuck
+ * depends on which mirror images are offered (move_vertex's strategies),
+ * so where quads are left bad the rounds start again from the extracted
+ * positions with the other strategies, and the result with the fewest bad
+ * quads is kept. Cones never move, every vertex stays on the surface, the
+ * connectivity is untouched.
  *
  * Cost: the map's vertex normals and one closest-point tree over its
- * triangles, then work proportional to the bad quads' neighbourhoods. */
+ * triangles, then work proportional to the bad quads' neighbourhoods, up
+ * to three times where quads stay bad. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,8 +56,24 @@ static double quad_margin(const sq_map *M, const sq_quad_mesh *Q, const double *
     }
     double a = sq_quad_fold_margin(p[0], p[1], p[2], p[3]), b = sq_quad_turn_margin(p, n), area, lmin;
     sq_quad_size(p[0], p[1], p[2], p[3], &area, &lmin);
-    if (!(lmin > min_edge)) return -2.0; /* two corners (nearly) at one place: worse than any fold */
+    /* two corners (nearly) at one place, or a quad (nearly) without area:
+     * worse than any fold */
+    if (!(lmin > min_edge) || !(area > min_edge * min_edge)) return -2.0;
     return a < b ? a : b;
+}
+
+/* Quad f's turn margin alone (sq_quad_turn_margin, normals as above). */
+static double turn_margin(const sq_map *M, const sq_quad_mesh *Q, const double *vn, uint32_t f)
+{
+    const uint32_t *q = Q->quad + 4 * (size_t)f;
+    const double *p[4], *n[4];
+    double nrm[4][3];
+    for (int k = 0; k < 4; k++) {
+        p[k] = Q->pos + 3 * (size_t)q[k];
+        sq_mesh_normal_at(&M->mesh, vn, Q->loc_face[q[k]], Q->loc_bary + 3 * (size_t)q[k], nrm[k]);
+        n[k] = nrm[k];
+    }
+    return sq_quad_turn_margin(p, n);
 }
 
 /* The quads around v judged together: the worst margin, how many are
@@ -97,6 +119,149 @@ static void place(const sq_map *M, sq_quad_mesh *Q, uint32_t v, const sq_cp_hit 
     Q->uv[2 * (size_t)v] = uv[0], Q->uv[2 * (size_t)v + 1] = uv[1];
 }
 
+/* One move of vertex v (the targets and the test in the header); 1 when
+ * it moved. The mirror images are taken across the far diagonal of, by
+ * strategy: 0, any quad around v, only when no other target helps; 1, a
+ * turned quad, always; 2, a bad quad, only when no other target helps. */
+static int move_vertex(const sq_map *M, sq_quad_mesh *Q, const sq_quad_star *S, const sq_cp_tree *tree,
+                       const double *vn, double min_edge, uint32_t v, int strategy)
+{
+    star_score cur = star_margin(M, S, Q, vn, min_edge, v);
+    double old[3], old_bary[3];
+    uint32_t old_face = Q->loc_face[v];
+    memcpy(old_bary, Q->loc_bary + 3 * (size_t)v, sizeof old_bary);
+    if (cur.worst >= 0.5) return 0;
+    memcpy(old, Q->pos + 3 * (size_t)v, sizeof old);
+    /* candidate targets: the mean of the edge neighbours, the mean
+     * of the quads' corners around v, then each edge neighbour */
+    uint32_t o = S->off[v], deg = S->off[v + 1] - o, ncand = 2 + 3 * deg;
+    star_score best = cur;
+    double best_p[3] = {0, 0, 0}, best_bary[3] = {0, 0, 0};
+    uint32_t best_tri = UINT32_MAX;
+    for (uint32_t c = 0; c < ncand; c++) {
+        double tgt[3] = {0, 0, 0};
+        if (c == 0) {
+            for (uint32_t k = o; k < o + deg; k++)
+                for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)S->next[k] + i] / deg;
+        } else if (c == 1) {
+            uint32_t n = 0;
+            for (uint32_t k = o; k < o + deg; k++)
+                for (int j = 0; j < 4; j++, n++)
+                    for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)Q->quad[4 * (size_t)S->quad[k] + j] + i];
+            for (int i = 0; i < 3; i++) tgt[i] /= n;
+        } else if (c < 2 + deg) {
+            memcpy(tgt, Q->pos + 3 * (size_t)S->next[o + c - 2], sizeof tgt);
+        } else if (c < 2 + 2 * deg) { /* the corner that makes quad k a parallelogram */
+            const uint32_t *q = Q->quad + 4 * (size_t)S->quad[o + c - 2 - deg];
+            int j = 0;
+            while (q[j] != v) j++;
+            for (int i = 0; i < 3; i++)
+                tgt[i] = Q->pos[3 * (size_t)q[(j + 1) % 4] + i] + Q->pos[3 * (size_t)q[(j + 3) % 4] + i] -
+                         Q->pos[3 * (size_t)q[(j + 2) % 4] + i];
+        } else { /* v mirrored across the diagonal of quad k that it does not touch: turns
+                  * its half of a quad lying upside down (a bow tie, which the next moves
+                  * of the other corners undo) */
+            uint32_t f = S->quad[o + c - 2 - 2 * deg];
+            if (strategy == 1 && turn_margin(M, Q, vn, f) >= 0.0) continue;
+            if (strategy == 2 && quad_margin(M, Q, vn, min_edge, f) >= 0.0) continue;
+            const uint32_t *q = Q->quad + 4 * (size_t)f;
+            int j = 0;
+            while (q[j] != v) j++;
+            const double *a = Q->pos + 3 * (size_t)q[(j + 1) % 4], *b = Q->pos + 3 * (size_t)q[(j + 3) % 4];
+            double d[3], w[3], dd = 0, t = 0;
+            for (int i = 0; i < 3; i++) d[i] = b[i] - a[i], w[i] = old[i] - a[i], dd += d[i] * d[i], t += w[i] * d[i];
+            t = dd > 0 ? t / dd : 0;
+            for (int i = 0; i < 3; i++) tgt[i] = 2 * (a[i] + t * d[i]) - old[i];
+        }
+        for (double step = c < 2 || c >= 2 + 2 * deg ? 1.0 : 0.5; step > 1.0 / 64; step *= 0.5) {
+            double p[3];
+            for (int i = 0; i < 3; i++) p[i] = old[i] + step * (tgt[i] - old[i]);
+            sq_cp_hit hit;
+            sq_cp_tree_query(tree, p, &hit);
+            memcpy(Q->pos + 3 * (size_t)v, hit.point, sizeof hit.point);
+            Q->loc_face[v] = hit.tri;
+            memcpy(Q->loc_bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
+            star_score w = star_margin(M, S, Q, vn, min_edge, v);
+            memcpy(Q->pos + 3 * (size_t)v, old, sizeof old);
+            Q->loc_face[v] = old_face;
+            memcpy(Q->loc_bary + 3 * (size_t)v, old_bary, sizeof old_bary);
+            if (star_better(w, best)) {
+                best = w, best_tri = hit.tri;
+                memcpy(best_p, hit.point, sizeof best_p);
+                memcpy(best_bary, hit.bary, sizeof best_bary);
+                break;
+            }
+        }
+        if (best_tri != UINT32_MAX && c == 0) break; /* the plain mean did it */
+        if (best_tri != UINT32_MAX && strategy != 1 && c == 1 + 2 * deg) break; /* mirrors: a last resort */
+    }
+    if (best_tri == UINT32_MAX) return 0;
+    sq_cp_hit bh;
+    memcpy(bh.point, best_p, sizeof bh.point);
+    bh.tri = best_tri;
+    memcpy(bh.bary, best_bary, sizeof bh.bary);
+    place(M, Q, v, &bh);
+    return 1;
+}
+
+/* Rounds of moves (header) with the given strategy (move_vertex), from
+ * the bad quads' vertices; stats->moves, rounds, folded_after updated. */
+static void untangle_rounds(const sq_map *M, sq_quad_mesh *Q, const sq_quad_star *S, const sq_cp_tree *tree,
+                            const double *vn, double min_edge, int strategy, uint8_t *mark, uint8_t *next,
+                            sq_untangle_stats *stats)
+{
+    uint32_t nv = Q->nv, nq = Q->nq;
+    memset(mark, 0, nv);
+    for (uint32_t f = 0; f < nq; f++)
+        if (quad_margin(M, Q, vn, min_edge, f) < 0.0)
+            for (int k = 0; k < 4; k++) mark[Q->quad[4 * (size_t)f + k]] = 1;
+    for (int round = 0; round < SQ_UNTANGLE_ROUNDS; round++) {
+        uint32_t moved = 0;
+        for (uint32_t v = 0; v < nv; v++) {
+            if (!mark[v] || Q->valence[v] != 4) continue;
+            moved += (uint32_t)move_vertex(M, Q, S, tree, vn, min_edge, v, strategy);
+        }
+        stats->moves += moved;
+        stats->rounds = (uint32_t)round + 1;
+        /* the quads still folded mark their vertices; no progress: a ring more */
+        uint32_t still = 0;
+        memset(next, 0, nv);
+        for (uint32_t f = 0; f < nq; f++)
+            if (quad_margin(M, Q, vn, min_edge, f) < 0.0) {
+                still++;
+                for (int k = 0; k < 4; k++) next[Q->quad[4 * (size_t)f + k]] = 1;
+            }
+        stats->folded_after = still;
+        if (!still) break;
+        if (!moved)
+            for (uint32_t v = 0; v < nv; v++)
+                if (mark[v])
+                    for (uint32_t k = S->off[v]; k < S->off[v + 1]; k++) next[S->next[k]] = 1;
+        uint8_t *t = mark;
+        mark = next, next = t;
+    }
+}
+
+/* Positions and locations of Q's vertices saved (pos, bary: 6 nv; face:
+ * nv) and put back (uv recomputed by place). */
+static void save_positions(const sq_quad_mesh *Q, double *buf, uint32_t *face)
+{
+    memcpy(buf, Q->pos, 3 * (size_t)Q->nv * sizeof *buf);
+    memcpy(buf + 3 * (size_t)Q->nv, Q->loc_bary, 3 * (size_t)Q->nv * sizeof *buf);
+    memcpy(face, Q->loc_face, (size_t)Q->nv * sizeof *face);
+}
+
+static void restore_positions(const sq_map *M, sq_quad_mesh *Q, const double *buf, const uint32_t *face)
+{
+    for (uint32_t v = 0; v < Q->nv; v++) {
+        sq_cp_hit hit;
+        memcpy(hit.point, buf + 3 * (size_t)v, sizeof hit.point);
+        memcpy(hit.bary, buf + 3 * ((size_t)Q->nv + v), sizeof hit.bary);
+        hit.tri = face[v];
+        place(M, Q, v, &hit);
+    }
+}
+
 sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stats *stats, sq_error *err)
 {
     sq_untangle_stats local;
@@ -129,106 +294,30 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
     /* quads around each vertex; edge neighbours (S.next: each quad edge
      * once from each side, the mesh being closed and manifold) */
     if ((st = sq_quad_star_build(nv, nq, Q->quad, &S, err))) goto done;
-    for (uint32_t f = 0; f < nq; f++)
-        if (quad_margin(M, Q, vn, min_edge, f) < 0.0)
-            for (int k = 0; k < 4; k++) mark[Q->quad[4 * (size_t)f + k]] = 1;
-    for (int round = 0; round < SQ_UNTANGLE_ROUNDS; round++) {
-        uint32_t moved = 0;
-        for (uint32_t v = 0; v < nv; v++) {
-            if (!mark[v] || Q->valence[v] != 4) continue;
-            star_score cur = star_margin(M, &S, Q, vn, min_edge, v);
-            double old[3], old_bary[3];
-            uint32_t old_face = Q->loc_face[v];
-            memcpy(old_bary, Q->loc_bary + 3 * (size_t)v, sizeof old_bary);
-            if (cur.worst >= 0.5) continue;
-            memcpy(old, Q->pos + 3 * (size_t)v, sizeof old);
-            /* candidate targets: the mean of the edge neighbours, the mean
-             * of the quads' corners around v, then each edge neighbour */
-            uint32_t o = S.off[v], deg = S.off[v + 1] - o, ncand = 2 + 3 * deg;
-            star_score best = cur;
-            double best_p[3] = {0, 0, 0}, best_bary[3] = {0, 0, 0};
-            uint32_t best_tri = UINT32_MAX;
-            for (uint32_t c = 0; c < ncand; c++) {
-                double tgt[3] = {0, 0, 0};
-                if (c == 0) {
-                    for (uint32_t k = o; k < o + deg; k++)
-                        for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)S.next[k] + i] / deg;
-                } else if (c == 1) {
-                    uint32_t n = 0;
-                    for (uint32_t k = o; k < o + deg; k++)
-                        for (int j = 0; j < 4; j++, n++)
-                            for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)Q->quad[4 * (size_t)S.quad[k] + j] + i];
-                    for (int i = 0; i < 3; i++) tgt[i] /= n;
-                } else if (c < 2 + deg) {
-                    memcpy(tgt, Q->pos + 3 * (size_t)S.next[o + c - 2], sizeof tgt);
-                } else if (c < 2 + 2 * deg) { /* the corner that makes quad k a parallelogram */
-                    const uint32_t *q = Q->quad + 4 * (size_t)S.quad[o + c - 2 - deg];
-                    int j = 0;
-                    while (q[j] != v) j++;
-                    for (int i = 0; i < 3; i++)
-                        tgt[i] = Q->pos[3 * (size_t)q[(j + 1) % 4] + i] + Q->pos[3 * (size_t)q[(j + 3) % 4] + i] -
-                                 Q->pos[3 * (size_t)q[(j + 2) % 4] + i];
-                } else { /* v mirrored across the diagonal of quad k that it does not touch: turns
-                          * its half of a quad lying upside down (a bow tie, which the next moves
-                          * of the other corners undo) */
-                    const uint32_t *q = Q->quad + 4 * (size_t)S.quad[o + c - 2 - 2 * deg];
-                    int j = 0;
-                    while (q[j] != v) j++;
-                    const double *a = Q->pos + 3 * (size_t)q[(j + 1) % 4], *b = Q->pos + 3 * (size_t)q[(j + 3) % 4];
-                    double d[3], w[3], dd = 0, t = 0;
-                    for (int i = 0; i < 3; i++) d[i] = b[i] - a[i], w[i] = old[i] - a[i], dd += d[i] * d[i], t += w[i] * d[i];
-                    t = dd > 0 ? t / dd : 0;
-                    for (int i = 0; i < 3; i++) tgt[i] = 2 * (a[i] + t * d[i]) - old[i];
-                }
-                for (double step = c < 2 || c >= 2 + 2 * deg ? 1.0 : 0.5; step > 1.0 / 64; step *= 0.5) {
-                    double p[3];
-                    for (int i = 0; i < 3; i++) p[i] = old[i] + step * (tgt[i] - old[i]);
-                    sq_cp_hit hit;
-                    sq_cp_tree_query(&tree, p, &hit);
-                    memcpy(Q->pos + 3 * (size_t)v, hit.point, sizeof hit.point);
-                    Q->loc_face[v] = hit.tri;
-                    memcpy(Q->loc_bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
-                    star_score w = star_margin(M, &S, Q, vn, min_edge, v);
-                    memcpy(Q->pos + 3 * (size_t)v, old, sizeof old);
-                    Q->loc_face[v] = old_face;
-                    memcpy(Q->loc_bary + 3 * (size_t)v, old_bary, sizeof old_bary);
-                    if (star_better(w, best)) {
-                        best = w, best_tri = hit.tri;
-                        memcpy(best_p, hit.point, sizeof best_p);
-                        memcpy(best_bary, hit.bary, sizeof best_bary);
-                        break;
-                    }
-                }
-                if (best_tri != UINT32_MAX && c == 0) break; /* the plain mean did it */
-                if (best_tri != UINT32_MAX && c == 1 + 2 * deg) break; /* mirror images: the last resort */
-            }
-            if (best_tri == UINT32_MAX) continue;
-            sq_cp_hit bh;
-            memcpy(bh.point, best_p, sizeof bh.point);
-            bh.tri = best_tri;
-            memcpy(bh.bary, best_bary, sizeof bh.bary);
-            place(M, Q, v, &bh);
-            moved++;
-        }
-        stats->moves += moved;
-        stats->rounds = (uint32_t)round + 1;
-        /* the quads still folded mark their vertices; no progress: a ring more */
-        uint32_t still = 0;
-        memset(next, 0, nv);
-        for (uint32_t f = 0; f < nq; f++)
-            if (quad_margin(M, Q, vn, min_edge, f) < 0.0) {
-                still++;
-                for (int k = 0; k < 4; k++) next[Q->quad[4 * (size_t)f + k]] = 1;
-            }
-        stats->folded_after = still;
-        if (!still) break;
-        if (!moved)
-            for (uint32_t v = 0; v < nv; v++)
-                if (mark[v])
-                    for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++) next[S.next[k]] = 1;
-        uint8_t *t = mark;
-        mark = next, next = t;
+    /* strategy 0, then, where quads are left bad, 1 and 2 from the same
+     * start (the moves are greedy, and which one gets stuck differs from
+     * map to map): the result with the fewest bad quads is kept */
+    size_t nvs = (size_t)nv;
+    double *start = malloc(6 * nvs * sizeof *start), *best = malloc(6 * nvs * sizeof *best);
+    uint32_t *start_face = malloc(2 * nvs * sizeof *start_face);
+    if (!start || !best || !start_face) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (untangling %u quads)", nq);
+        free(start), free(best), free(start_face);
+        goto done;
     }
+    save_positions(Q, start, start_face);
+    sq_untangle_stats s0 = *stats;
+    untangle_rounds(M, Q, &S, &tree, vn, min_edge, 0, mark, next, &s0);
+    for (int strategy = 1; strategy < 3 && s0.folded_after; strategy++) {
+        sq_untangle_stats s1 = *stats;
+        save_positions(Q, best, start_face + nvs);
+        restore_positions(M, Q, start, start_face);
+        untangle_rounds(M, Q, &S, &tree, vn, min_edge, strategy, mark, next, &s1);
+        if (s1.folded_after < s0.folded_after) s0 = s1;
+        else restore_positions(M, Q, best, start_face + nvs);
+    }
+    *stats = s0;
+    free(start), free(best), free(start_face);
 done:
     sq_cp_tree_free(&tree);
     sq_quad_star_free(&S);
