@@ -40,29 +40,9 @@
 
 #define SQ_UNTANGLE_ROUNDS 60
 
-/* The smaller of quad f's fold margin and its turn margin on the surface
- * (vn: the map mesh's vertex normals, interpolated at each corner's
- * loc_face and loc_bary): negative where the quad is folded or turned
- * over. */
-static double quad_margin(const sq_map *M, const sq_quad_mesh *Q, const double *vn, double min_edge, uint32_t f)
-{
-    const uint32_t *q = Q->quad + 4 * (size_t)f;
-    const double *p[4], *n[4];
-    double nrm[4][3];
-    for (int k = 0; k < 4; k++) {
-        p[k] = Q->pos + 3 * (size_t)q[k];
-        sq_mesh_normal_at(&M->mesh, vn, Q->loc_face[q[k]], Q->loc_bary + 3 * (size_t)q[k], nrm[k]);
-        n[k] = nrm[k];
-    }
-    double a = sq_quad_fold_margin(p[0], p[1], p[2], p[3]), b = sq_quad_turn_margin(p, n), area, lmin;
-    sq_quad_size(p[0], p[1], p[2], p[3], &area, &lmin);
-    /* two corners (nearly) at one place, or a quad (nearly) without area:
-     * worse than any fold */
-    if (!(lmin > min_edge) || !(area > min_edge * min_edge)) return -2.0;
-    return a < b ? a : b;
-}
-
-/* Quad f's turn margin alone (sq_quad_turn_margin, normals as above). */
+/* Quad f's turn margin on the surface (sq_quad_turn_margin; vn: the map
+ * mesh's vertex normals, interpolated at each corner's loc_face and
+ * loc_bary). */
 static double turn_margin(const sq_map *M, const sq_quad_mesh *Q, const double *vn, uint32_t f)
 {
     const uint32_t *q = Q->quad + 4 * (size_t)f;
@@ -74,6 +54,22 @@ static double turn_margin(const sq_map *M, const sq_quad_mesh *Q, const double *
         n[k] = nrm[k];
     }
     return sq_quad_turn_margin(p, n);
+}
+
+/* The smaller of quad f's fold margin and its turn margin: negative where
+ * the quad is folded or turned over. */
+static double quad_margin(const sq_map *M, const sq_quad_mesh *Q, const double *vn, double min_edge, uint32_t f)
+{
+    const uint32_t *q = Q->quad + 4 * (size_t)f;
+    const double *p0 = Q->pos + 3 * (size_t)q[0], *p1 = Q->pos + 3 * (size_t)q[1], *p2 = Q->pos + 3 * (size_t)q[2],
+                 *p3 = Q->pos + 3 * (size_t)q[3];
+    double area, lmin;
+    sq_quad_size(p0, p1, p2, p3, &area, &lmin);
+    /* two corners (nearly) at one place, or a quad (nearly) without area:
+     * worse than any fold */
+    if (!(lmin > min_edge) || !(area > min_edge * min_edge)) return -2.0;
+    double a = sq_quad_fold_margin(p0, p1, p2, p3), b = turn_margin(M, Q, vn, f);
+    return a < b ? a : b;
 }
 
 /* The quads around v judged together: the worst margin, how many are

@@ -56,6 +56,18 @@ static sq_status push(cand **v, size_t *n, size_t *cap, cand c)
     return SQ_OK;
 }
 
+/* one more (axis, c) line of a patch */
+static sq_status push_line(double **line, size_t *n, size_t *cap, int axis, double c)
+{
+    if (*n == *cap) {
+        double *g = realloc(*line, 4 * *cap * sizeof *g);
+        if (!g) return SQ_ERR_NOMEM;
+        *line = g, *cap *= 2;
+    }
+    (*line)[2 * *n] = axis, (*line)[2 * *n + 1] = c, ++*n;
+    return SQ_OK;
+}
+
 sq_status sq_qlayout_refine_chords(const sq_split *S, const sq_qlayout *L, const uint8_t *failed,
                                    uint32_t grid, sq_chord **chords, uint32_t *n, uint32_t *cap,
                                    sq_error *err)
@@ -90,29 +102,12 @@ sq_status sq_qlayout_refine_chords(const sq_split *S, const sq_qlayout *L, const
                 double q[2];
                 local_corner(S, L, h / 3, (int)(h % 3), q);
                 int axis = s == 0 || s == 2 ? 0 : 1;
-                if (nl == nline_cap) {
-                    double *g = realloc(line, 4 * nline_cap * sizeof *line);
-                    if (!g) {
-                        st = SQ_ERR_NOMEM;
-                        break;
-                    }
-                    line = g, nline_cap *= 2;
-                }
-                line[2 * nl] = axis, line[2 * nl + 1] = q[axis], nl++;
+                if ((st = push_line(&line, &nl, &nline_cap, axis, q[axis]))) break;
             }
         }
         for (uint32_t i = 1; i < grid && !st; i++)
-            for (int axis = 0; axis < 2; axis++) {
-                if (nl == nline_cap) {
-                    double *g = realloc(line, 4 * nline_cap * sizeof *line);
-                    if (!g) {
-                        st = SQ_ERR_NOMEM;
-                        break;
-                    }
-                    line = g, nline_cap *= 2;
-                }
-                line[2 * nl] = axis, line[2 * nl + 1] = (axis ? H : W) * i / grid, nl++;
-            }
+            for (int axis = 0; axis < 2 && !st; axis++)
+                st = push_line(&line, &nl, &nline_cap, axis, (axis ? H : W) * i / grid);
         /* each line in the chart of every mesh face it crosses inside p */
         for (uint32_t k = tri_off[p]; k < tri_off[p + 1] && !st; k++) {
             uint32_t t = tri_list[k];
