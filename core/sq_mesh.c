@@ -528,3 +528,43 @@ uint32_t *sq_mesh_triangles(const sq_mesh *m)
     }
     return tri;
 }
+
+void sq_area_weighted_normals(uint32_t nv, const double *pos, uint32_t nt, const uint32_t *tri, double *vn)
+{
+    memset(vn, 0, 3 * (size_t)nv * sizeof *vn);
+    for (uint32_t t = 0; t < nt; t++) {
+        const uint32_t *c = tri + 3 * (size_t)t;
+        const double *a = pos + 3 * (size_t)c[0], *b = pos + 3 * (size_t)c[1], *d = pos + 3 * (size_t)c[2];
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        for (int j = 0; j < 3; j++)
+            for (int k = 0; k < 3; k++) vn[3 * (size_t)c[j] + k] += n[k];
+    }
+}
+
+double *sq_mesh_vertex_normals(const sq_mesh *m)
+{
+    uint32_t *tri = sq_mesh_triangles(m);
+    double *vn = malloc(3 * ((size_t)m->nv + 1) * sizeof *vn);
+    if (!tri || !vn) {
+        free(tri), free(vn);
+        return NULL;
+    }
+    sq_area_weighted_normals(m->nv, m->pos, m->nf, tri, vn);
+    free(tri);
+    for (uint32_t v = 0; v < m->nv; v++) {
+        double *n = vn + 3 * (size_t)v, l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
+    }
+    return vn;
+}
+
+void sq_mesh_normal_at(const sq_mesh *m, const double *vn, uint32_t f, const double bary[3], double n[3])
+{
+    uint32_t h = m->f_he[f];
+    n[0] = n[1] = n[2] = 0.0;
+    for (int k = 0; k < 3; k++, h = m->he_next[h])
+        for (int i = 0; i < 3; i++) n[i] += bary[k] * vn[3 * (size_t)m->he_vert[h] + i];
+    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
+}

@@ -63,6 +63,20 @@ double sq_bbox_diagonal(uint32_t nv, const double *pos);
  * corners from f_he[f] on (malloc'ed; NULL when out of memory). */
 uint32_t *sq_mesh_triangles(const sq_mesh *m);
 
+/* Area-weighted vertex normals of the triangles tri (3 nt): vn (3 nv,
+ * overwritten) receives at each vertex the sum of its triangles' cross
+ * products (b - a) x (c - a), twice their areas times their unit normals;
+ * not normalized. */
+void sq_area_weighted_normals(uint32_t nv, const double *pos, uint32_t nt, const uint32_t *tri, double *vn);
+
+/* The same for a triangle mesh, each normalized (3 nv, malloc'ed; NULL
+ * when out of memory); sq_mesh_normal_at: their interpolation by the
+ * barycentric coordinates bary in face f (for the corners from f_he[f]
+ * on), normalized: the surface's smooth normal there, which a sliver
+ * triangle's own (noise) normal does not decide. */
+double *sq_mesh_vertex_normals(const sq_mesh *m);
+void sq_mesh_normal_at(const sq_mesh *m, const double *vn, uint32_t f, const double bary[3], double n[3]);
+
 #ifdef __cplusplus
 }
 #endif

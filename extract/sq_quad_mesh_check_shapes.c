@@ -1,5 +1,7 @@
 /* seamquad: the shapes of a quad mesh's quads, judged as the referee
  * judges them (sq_extract.h, step 6). */
+#include <stdlib.h>
+
 #include "sq_extract.h"
 #include "sq_smooth.h"
 
@@ -22,7 +24,11 @@ sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, const sq_mesh *m, con
         if (sq_quad_fold_margin(p[0], p[1], p[2], p[3]) < 0.0 && !s.folded++) s.first_folded = f;
     }
     if (m && vert_face && vert_bary) {
-        sq_status st = sq_quad_mesh_count_turned(Q, m, vert_face, vert_bary, &s.turned, &s.first_turned, NULL, err);
+        double *vn = sq_mesh_vertex_normals(m);
+        if (!vn) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (turned quads)");
+        sq_status st =
+            sq_quad_mesh_count_turned(Q, m, vn, vert_face, vert_bary, &s.turned, &s.first_turned, NULL, err);
+        free(vn);
         if (st) return st;
     }
     if (out) *out = s;

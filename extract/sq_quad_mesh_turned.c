@@ -16,37 +16,6 @@ static void cross3(const double *a, const double *b, double *c)
     c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-double *sq_mesh_vertex_normals(const sq_mesh *m)
-{
-    double *vn = calloc(3 * ((size_t)m->nv + 1), sizeof *vn);
-    if (!vn) return NULL;
-    for (uint32_t f = 0; f < m->nf; f++) {
-        uint32_t h = m->f_he[f], h1 = m->he_next[h], h2 = m->he_next[h1];
-        const double *x = m->pos + 3 * (size_t)m->he_vert[h], *y = m->pos + 3 * (size_t)m->he_vert[h1],
-                     *z = m->pos + 3 * (size_t)m->he_vert[h2];
-        double e1[3], e2[3], n[3];
-        sub3(y, x, e1), sub3(z, x, e2), cross3(e1, e2, n); /* twice the area times the unit normal */
-        uint32_t c[3] = {m->he_vert[h], m->he_vert[h1], m->he_vert[h2]};
-        for (int k = 0; k < 3; k++)
-            for (int i = 0; i < 3; i++) vn[3 * (size_t)c[k] + i] += n[i];
-    }
-    for (uint32_t v = 0; v < m->nv; v++) {
-        double *n = vn + 3 * (size_t)v, l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
-    }
-    return vn;
-}
-
-void sq_mesh_normal_at(const sq_mesh *m, const double *vn, uint32_t f, const double bary[3], double n[3])
-{
-    uint32_t h = m->f_he[f];
-    n[0] = n[1] = n[2] = 0.0;
-    for (int k = 0; k < 3; k++, h = m->he_next[h])
-        for (int i = 0; i < 3; i++) n[i] += bary[k] * vn[3 * (size_t)m->he_vert[h] + i];
-    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
-}
-
 double sq_quad_turn_margin(const double *const p[4], const double *const n[4])
 {
     double c[4][3], l[4], lmax = 0.0;
@@ -65,17 +34,14 @@ double sq_quad_turn_margin(const double *const p[4], const double *const n[4])
     return best;
 }
 
-sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, const uint32_t *vert_face,
-                                    const double *vert_bary, uint32_t *count, uint32_t *first, uint8_t *flags,
-                                    sq_error *err)
+sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, const double *vn,
+                                    const uint32_t *vert_face, const double *vert_bary, uint32_t *count,
+                                    uint32_t *first, uint8_t *flags, sq_error *err)
 {
     uint32_t n = 0;
     if (first) *first = UINT32_MAX;
-    double *vn = sq_mesh_vertex_normals(m), *qn = malloc(3 * ((size_t)Q->nv + 1) * sizeof *qn);
-    if (!vn || !qn) {
-        free(vn), free(qn);
-        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (turned quads)");
-    }
+    double *qn = malloc(3 * ((size_t)Q->nv + 1) * sizeof *qn);
+    if (!qn) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (turned quads)");
     for (uint32_t v = 0; v < Q->nv; v++) sq_mesh_normal_at(m, vn, vert_face[v], vert_bary + 3 * (size_t)v, qn + 3 * (size_t)v);
     for (uint32_t f = 0; f < Q->nq; f++) {
         const uint32_t *q = Q->quad + 4 * (size_t)f;
@@ -85,7 +51,7 @@ sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, con
         if (flags) flags[f] = (uint8_t)t;
         if (t && !n++ && first) *first = f;
     }
-    free(vn), free(qn);
+    free(qn);
     *count = n;
     return SQ_OK;
 }

@@ -95,44 +95,59 @@ static sq_status mesh_self_intersections(const sq_mesh *m, uint64_t *pairs, sq_e
     return st;
 }
 
-/* The quads of Q turned over on m (sq_quad_mesh_count_turned), each vertex
- * located on its nearest face of m (smoothing and repair keep them on it). */
-static sq_status turned_on(const sq_mesh *m, const sq_quad_mesh *Q, uint32_t *count, uint8_t *flags, sq_error *err)
-{
-    uint32_t *tri = sq_mesh_triangles(m), *face = malloc(((size_t)Q->nv + 1) * sizeof *face);
-    double *bary = malloc(3 * ((size_t)Q->nv + 1) * sizeof *bary);
+/* Where Q's vertices lie on m (smoothing and repair keep them on it): the
+ * closest-point tree, each vertex's nearest face and its barycentric
+ * coordinates there, and m's vertex normals, for the turned-over test. */
+typedef struct on_surface {
+    uint32_t *tri, *face;
+    double *bary, *vn;
     sq_cp_tree tree;
-    memset(&tree, 0, sizeof tree);
-    sq_status st = SQ_OK;
-    if (!tri || !face || !bary) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (turned quads)");
-    if (!st) st = sq_cp_tree_build(m->nv, m->pos, m->nf, tri, &tree, err);
-    for (uint32_t v = 0; v < Q->nv && !st; v++) {
-        sq_cp_hit hit;
-        sq_cp_tree_query(&tree, Q->pos + 3 * (size_t)v, &hit);
-        face[v] = hit.tri;
-        memcpy(bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
+} on_surface;
+
+static void on_surface_free(on_surface *o)
+{
+    sq_cp_tree_free(&o->tree);
+    free(o->tri), free(o->face), free(o->bary), free(o->vn);
+}
+
+static sq_status on_surface_init(const sq_mesh *m, uint32_t nv, on_surface *o, sq_error *err)
+{
+    memset(o, 0, sizeof *o);
+    o->tri = sq_mesh_triangles(m);
+    o->face = malloc(((size_t)nv + 1) * sizeof *o->face);
+    o->bary = malloc(3 * ((size_t)nv + 1) * sizeof *o->bary);
+    o->vn = sq_mesh_vertex_normals(m);
+    if (!o->tri || !o->face || !o->bary || !o->vn) {
+        on_surface_free(o);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quads on the surface)");
     }
-    if (!st) st = sq_quad_mesh_count_turned(Q, m, face, bary, count, NULL, flags, err);
-    sq_cp_tree_free(&tree);
-    free(tri), free(face), free(bary);
+    sq_status st = sq_cp_tree_build(m->nv, m->pos, m->nf, o->tri, &o->tree, err);
+    if (st) on_surface_free(o);
     return st;
+}
+
+/* Q's vertices located on m afresh. */
+static void on_surface_locate(on_surface *o, const sq_quad_mesh *Q)
+{
+    for (uint32_t v = 0; v < Q->nv; v++) {
+        sq_cp_hit hit;
+        sq_cp_tree_query(&o->tree, Q->pos + 3 * (size_t)v, &hit);
+        o->face[v] = hit.tri;
+        memcpy(o->bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
+    }
 }
 
 /* Step 6 of extract on the final quads (sq_quad_mesh_check_shapes), the
  * turned-over test on m included. */
 static sq_status check_final_shapes(const sq_mesh *m, const sq_quad_mesh *Q, sq_error *err)
 {
-    sq_quad_shapes sh;
-    sq_status st = sq_quad_mesh_check_shapes(Q, NULL, NULL, NULL, sq_bbox_diagonal(m->nv, m->pos), &sh, err);
+    on_surface o;
+    sq_status st = on_surface_init(m, Q->nv, &o, err);
     if (st) return st;
-    uint32_t turned = 0;
-    if ((st = turned_on(m, Q, &turned, NULL, err))) return st;
-    if (turned)
-        return sq_error_set(err, SQ_ERR_DEGENERATE,
-                            "%u quad%s turned over on the surface (every corner facing away from it: "
-                            "a flipped face): the map is too distorted at this grid size",
-                            turned, turned == 1 ? " is" : "s are");
-    return SQ_OK;
+    on_surface_locate(&o, Q);
+    st = sq_quad_mesh_check_shapes(Q, m, o.face, o.bary, sq_bbox_diagonal(m->nv, m->pos), NULL, err);
+    on_surface_free(&o);
+    return st;
 }
 
 /* Where smoothing turned quads over: the vertices of those quads, then
@@ -148,9 +163,15 @@ static sq_status revert_turned(const sq_mesh *m, sq_quad_mesh *Q, const double *
             *grow = malloc((size_t)Q->nv + 1);
     double *smoothed = malloc(3 * ((size_t)Q->nv + 1) * sizeof *smoothed);
     sq_quad_star S = {NULL, NULL, NULL};
+    on_surface o;
+    memset(&o, 0, sizeof o);
     sq_status st = SQ_OK;
     if (!flags || !mark || !grow || !smoothed) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (smoothing)");
-    if (!st) st = turned_on(m, Q, turned, flags, err);
+    if (!st) st = on_surface_init(m, Q->nv, &o, err);
+    if (!st) {
+        on_surface_locate(&o, Q);
+        st = sq_quad_mesh_count_turned(Q, m, o.vn, o.face, o.bary, turned, NULL, flags, err);
+    }
     if (!st && *turned) st = sq_quad_star_build(Q->nv, Q->nq, Q->quad, &S, err);
     if (!st && *turned) {
         memcpy(smoothed, Q->pos, 3 * (size_t)Q->nv * sizeof *smoothed);
@@ -169,7 +190,8 @@ static sq_status revert_turned(const sq_mesh *m, sq_quad_mesh *Q, const double *
             *kept = 0;
             for (uint32_t v = 0; v < Q->nv; v++)
                 if (mark[v]) memcpy(Q->pos + 3 * (size_t)v, keep + 3 * (size_t)v, 3 * sizeof *keep), ++*kept;
-            if ((st = turned_on(m, Q, &left, NULL, err))) break;
+            on_surface_locate(&o, Q);
+            if ((st = sq_quad_mesh_count_turned(Q, m, o.vn, o.face, o.bary, &left, NULL, NULL, err))) break;
             for (uint32_t f = 0; f < Q->nq && !left; f++) {
                 const uint32_t *q = Q->quad + 4 * (size_t)f;
                 left += sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1],
@@ -179,6 +201,7 @@ static sq_status revert_turned(const sq_mesh *m, sq_quad_mesh *Q, const double *
         if (!st && left) memcpy(Q->pos, smoothed, 3 * (size_t)Q->nv * sizeof *smoothed), *kept = 0;
         else if (!st) *turned = 0;
     }
+    on_surface_free(&o);
     sq_quad_star_free(&S);
     free(flags), free(mark), free(grow), free(smoothed);
     return st;

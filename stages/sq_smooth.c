@@ -458,9 +458,8 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
             n[0] = 0, n[1] = 0, n[2] = 1, l = 1;
         }
         for (int k = 0; k < 3; k++) tri_normal[3 * (size_t)t + k] = n[k] / l;
-        for (int j = 0; j < 3; j++) /* area weight: the unnormalized normal */
-            for (int k = 0; k < 3; k++) vnormal[3 * (size_t)stri[3 * (size_t)t + j] + k] += n[k];
     }
+    sq_area_weighted_normals(snv, spos, snt, stri, vnormal);
     sq_smooth_targets(nv, nq, quads, s.target, s.ideal_log);
     s.ctx = (sq_smooth_ctx){nv, nq, quads, base, s.frame, s.h, s.ref_normal, s.untangle, s.threshold,
                             NULL, NULL, s.con_quad, opt->angle_weight, opt->length_weight,
