@@ -87,19 +87,7 @@ sq_status sq_qlayout_embed(const sq_map *M, const sq_split *S, const sq_qlayout 
             }
     }
     if (st) goto done;
-    /* triangles by patch */
-    for (uint32_t t = 0; t < S->nt; t++) tri_off[L->tri_patch[t] + 1]++;
-    for (uint32_t p = 0; p < L->np; p++) tri_off[p + 1] += tri_off[p];
-    {
-        uint32_t *fill = malloc(((size_t)L->np + 1) * sizeof *fill);
-        if (!fill) {
-            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (quantization embedding)");
-            goto done;
-        }
-        memcpy(fill, tri_off, (size_t)L->np * sizeof *fill);
-        for (uint32_t t = 0; t < S->nt; t++) tri_list[fill[L->tri_patch[t]]++] = t;
-        free(fill);
-    }
+    sq_qlayout_patch_triangles(S, L, tri_off, tri_list);
     for (uint32_t h = 0; h < m->nh; h++) wedge[h] = h, stamp[h] = UINT32_MAX;
     for (uint32_t h = 0; h < m->nh; h++) {
         uint32_t e = m->he_next[m->he_next[h]]; /* the edge into h's origin */

@@ -47,6 +47,11 @@ typedef struct sq_qlayout {
 sq_status sq_qlayout_build(const sq_map *M, const sq_split *S, sq_qlayout *L, sq_error *err);
 void sq_qlayout_free(sq_qlayout *L);
 
+/* The split triangles of each patch, in order: those of patch p are
+ * list[off[p] .. off[p + 1]) (off: np + 1 entries, list: nt; the caller
+ * allocates both). */
+void sq_qlayout_patch_triangles(const sq_split *S, const sq_qlayout *L, uint32_t *off, uint32_t *list);
+
 /* The boundary halfedge of a patch that follows h (a chord halfedge with
  * the patch on its left): around h's end, inside the patch. */
 uint32_t sq_qlayout_next_boundary(const sq_split *S, uint32_t h);

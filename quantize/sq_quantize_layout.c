@@ -464,3 +464,13 @@ done:
     if (st) sq_qlayout_free(L);
     return st;
 }
+
+void sq_qlayout_patch_triangles(const sq_split *S, const sq_qlayout *L, uint32_t *off, uint32_t *list)
+{
+    memset(off, 0, ((size_t)L->np + 1) * sizeof *off);
+    for (uint32_t t = 0; t < S->nt; t++) off[L->tri_patch[t] + 1]++;
+    for (uint32_t p = 0; p < L->np; p++) off[p + 1] += off[p];
+    for (uint32_t t = 0; t < S->nt; t++) list[off[L->tri_patch[t]]++] = t; /* off[p] now at p's end */
+    for (uint32_t p = L->np; p > 0; p--) off[p] = off[p - 1];
+    off[0] = 0;
+}

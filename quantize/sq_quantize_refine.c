@@ -74,7 +74,7 @@ sq_status sq_qlayout_refine_chords(const sq_split *S, const sq_qlayout *L, const
 {
     const sq_mesh *m = &S->mesh;
     sq_status st = SQ_OK;
-    uint32_t *tri_off = calloc((size_t)L->np + 2, sizeof *tri_off);
+    uint32_t *tri_off = malloc(((size_t)L->np + 1) * sizeof *tri_off);
     uint32_t *tri_list = malloc(((size_t)S->nt + 1) * sizeof *tri_list);
     size_t nline_cap = 64, ncand = 0, cand_cap = 0;
     double *line = malloc(2 * nline_cap * sizeof *line); /* (axis, c) of one patch */
@@ -83,11 +83,7 @@ sq_status sq_qlayout_refine_chords(const sq_split *S, const sq_qlayout *L, const
         st = SQ_ERR_NOMEM;
         goto done;
     }
-    for (uint32_t t = 0; t < S->nt; t++) tri_off[L->tri_patch[t] + 1]++;
-    for (uint32_t p = 0; p < L->np; p++) tri_off[p + 1] += tri_off[p];
-    for (uint32_t t = 0; t < S->nt; t++) tri_list[tri_off[L->tri_patch[t]]++] = t;
-    for (uint32_t p = L->np; p > 0; p--) tri_off[p] = tri_off[p - 1];
-    tri_off[0] = 0;
+    sq_qlayout_patch_triangles(S, L, tri_off, tri_list);
     for (uint32_t k = 0; k < *n && !st; k++)
         st = push(&C, &ncand, &cand_cap, (cand){(*chords)[k].face, (*chords)[k].axis, 0, (*chords)[k].c, 0});
     for (uint32_t p = 0; p < L->np && !st; p++) {
