@@ -100,14 +100,20 @@ static int star_better(star_score a, star_score b)
     return a.worst >= b.worst && a.neg <= b.neg && a.neg_sum < b.neg_sum * (1.0 - 1e-9);
 }
 
-/* Vertex v moved to the surface point `hit` (pos, loc_face, loc_bary, and
- * the map's UV there, no longer an integer point). */
-static void place(const sq_map *M, sq_quad_mesh *Q, uint32_t v, const sq_cp_hit *hit)
+/* Vertex v moved to the surface point `hit`: locate sets pos, loc_face
+ * and loc_bary (enough to judge the move), place also the map's UV there
+ * (no longer an integer point). */
+static void locate(sq_quad_mesh *Q, uint32_t v, const sq_cp_hit *hit)
 {
-    const sq_mesh *m = &M->mesh;
     memcpy(Q->pos + 3 * (size_t)v, hit->point, sizeof hit->point);
     Q->loc_face[v] = hit->tri;
     memcpy(Q->loc_bary + 3 * (size_t)v, hit->bary, sizeof hit->bary);
+}
+
+static void place(const sq_map *M, sq_quad_mesh *Q, uint32_t v, const sq_cp_hit *hit)
+{
+    const sq_mesh *m = &M->mesh;
+    locate(Q, v, hit);
     uint32_t h = m->f_he[hit->tri];
     double uv[2] = {0, 0};
     for (int k = 0; k < 3; k++, h = m->he_next[h])
@@ -123,17 +129,17 @@ static int move_vertex(const sq_map *M, sq_quad_mesh *Q, const sq_quad_star *S, 
                        const double *vn, double min_edge, uint32_t v, int strategy)
 {
     star_score cur = star_margin(M, S, Q, vn, min_edge, v);
-    double old[3], old_bary[3];
-    uint32_t old_face = Q->loc_face[v];
-    memcpy(old_bary, Q->loc_bary + 3 * (size_t)v, sizeof old_bary);
     if (cur.worst >= 0.5) return 0;
-    memcpy(old, Q->pos + 3 * (size_t)v, sizeof old);
+    sq_cp_hit now, best_hit; /* v's place, the best move's */
+    memcpy(now.point, Q->pos + 3 * (size_t)v, sizeof now.point);
+    now.tri = Q->loc_face[v];
+    memcpy(now.bary, Q->loc_bary + 3 * (size_t)v, sizeof now.bary);
+    const double *old = now.point;
     /* candidate targets: the mean of the edge neighbours, the mean
      * of the quads' corners around v, then each edge neighbour */
     uint32_t o = S->off[v], deg = S->off[v + 1] - o, ncand = 2 + 3 * deg;
     star_score best = cur;
-    double best_p[3] = {0, 0, 0}, best_bary[3] = {0, 0, 0};
-    uint32_t best_tri = UINT32_MAX;
+    int found = 0;
     for (uint32_t c = 0; c < ncand; c++) {
         double tgt[3] = {0, 0, 0};
         if (c == 0) {
@@ -174,29 +180,19 @@ static int move_vertex(const sq_map *M, sq_quad_mesh *Q, const sq_quad_star *S, 
             for (int i = 0; i < 3; i++) p[i] = old[i] + step * (tgt[i] - old[i]);
             sq_cp_hit hit;
             sq_cp_tree_query(tree, p, &hit);
-            memcpy(Q->pos + 3 * (size_t)v, hit.point, sizeof hit.point);
-            Q->loc_face[v] = hit.tri;
-            memcpy(Q->loc_bary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
+            locate(Q, v, &hit);
             star_score w = star_margin(M, S, Q, vn, min_edge, v);
-            memcpy(Q->pos + 3 * (size_t)v, old, sizeof old);
-            Q->loc_face[v] = old_face;
-            memcpy(Q->loc_bary + 3 * (size_t)v, old_bary, sizeof old_bary);
+            locate(Q, v, &now);
             if (star_better(w, best)) {
-                best = w, best_tri = hit.tri;
-                memcpy(best_p, hit.point, sizeof best_p);
-                memcpy(best_bary, hit.bary, sizeof best_bary);
+                best = w, best_hit = hit, found = 1;
                 break;
             }
         }
-        if (best_tri != UINT32_MAX && c == 0) break; /* the plain mean did it */
-        if (best_tri != UINT32_MAX && strategy != 1 && c == 1 + 2 * deg) break; /* mirrors: a last resort */
+        if (found && c == 0) break; /* the plain mean did it */
+        if (found && strategy != 1 && c == 1 + 2 * deg) break; /* mirrors: a last resort */
     }
-    if (best_tri == UINT32_MAX) return 0;
-    sq_cp_hit bh;
-    memcpy(bh.point, best_p, sizeof bh.point);
-    bh.tri = best_tri;
-    memcpy(bh.bary, best_bary, sizeof bh.bary);
-    place(M, Q, v, &bh);
+    if (!found) return 0;
+    place(M, Q, v, &best_hit);
     return 1;
 }
 
@@ -238,22 +234,27 @@ static void untangle_rounds(const sq_map *M, sq_quad_mesh *Q, const sq_quad_star
     }
 }
 
-/* Positions and locations of Q's vertices saved (pos, bary: 6 nv; face:
- * nv) and put back (uv recomputed by place). */
-static void save_positions(const sq_quad_mesh *Q, double *buf, uint32_t *face)
+/* Where Q's vertices are (pos, loc_face, loc_bary), saved and put back
+ * (place recomputes their UVs). */
+typedef struct saved_places {
+    double *pos, *bary;
+    uint32_t *face;
+} saved_places;
+
+static void save_places(const sq_quad_mesh *Q, saved_places *s)
 {
-    memcpy(buf, Q->pos, 3 * (size_t)Q->nv * sizeof *buf);
-    memcpy(buf + 3 * (size_t)Q->nv, Q->loc_bary, 3 * (size_t)Q->nv * sizeof *buf);
-    memcpy(face, Q->loc_face, (size_t)Q->nv * sizeof *face);
+    memcpy(s->pos, Q->pos, 3 * (size_t)Q->nv * sizeof *s->pos);
+    memcpy(s->bary, Q->loc_bary, 3 * (size_t)Q->nv * sizeof *s->bary);
+    memcpy(s->face, Q->loc_face, (size_t)Q->nv * sizeof *s->face);
 }
 
-static void restore_positions(const sq_map *M, sq_quad_mesh *Q, const double *buf, const uint32_t *face)
+static void restore_places(const sq_map *M, sq_quad_mesh *Q, const saved_places *s)
 {
     for (uint32_t v = 0; v < Q->nv; v++) {
         sq_cp_hit hit;
-        memcpy(hit.point, buf + 3 * (size_t)v, sizeof hit.point);
-        memcpy(hit.bary, buf + 3 * ((size_t)Q->nv + v), sizeof hit.bary);
-        hit.tri = face[v];
+        memcpy(hit.point, s->pos + 3 * (size_t)v, sizeof hit.point);
+        memcpy(hit.bary, s->bary + 3 * (size_t)v, sizeof hit.bary);
+        hit.tri = s->face[v];
         place(M, Q, v, &hit);
     }
 }
@@ -293,27 +294,28 @@ sq_status sq_extract_untangle(const sq_map *M, sq_quad_mesh *Q, sq_untangle_stat
     /* strategy 0, then, where quads are left bad, 1 and 2 from the same
      * start (the moves are greedy, and which one gets stuck differs from
      * map to map): the result with the fewest bad quads is kept */
-    size_t nvs = (size_t)nv;
-    double *start = malloc(6 * nvs * sizeof *start), *best = malloc(6 * nvs * sizeof *best);
-    uint32_t *start_face = malloc(2 * nvs * sizeof *start_face);
-    if (!start || !best || !start_face) {
+    size_t n3 = 3 * (size_t)nv;
+    double *buf = malloc(4 * n3 * sizeof *buf);
+    uint32_t *faces = malloc(2 * (size_t)nv * sizeof *faces);
+    if (!buf || !faces) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (untangling %u quads)", nq);
-        free(start), free(best), free(start_face);
+        free(buf), free(faces);
         goto done;
     }
-    save_positions(Q, start, start_face);
+    saved_places start = {buf, buf + n3, faces}, best = {buf + 2 * n3, buf + 3 * n3, faces + nv};
+    save_places(Q, &start);
     sq_untangle_stats s0 = *stats;
     untangle_rounds(M, Q, &S, &tree, vn, min_edge, 0, mark, next, &s0);
     for (int strategy = 1; strategy < 3 && s0.folded_after; strategy++) {
         sq_untangle_stats s1 = *stats;
-        save_positions(Q, best, start_face + nvs);
-        restore_positions(M, Q, start, start_face);
+        save_places(Q, &best);
+        restore_places(M, Q, &start);
         untangle_rounds(M, Q, &S, &tree, vn, min_edge, strategy, mark, next, &s1);
         if (s1.folded_after < s0.folded_after) s0 = s1;
-        else restore_positions(M, Q, best, start_face + nvs);
+        else restore_places(M, Q, &best);
     }
     *stats = s0;
-    free(start), free(best), free(start_face);
+    free(buf), free(faces);
 done:
     sq_cp_tree_free(&tree);
     sq_quad_star_free(&S);
