@@ -433,7 +433,7 @@ static void expect_error(const tmesh *t, int64_t m, sq_status code, const char *
 static void test_bad_input(void **state)
 {
     (void)state;
-    tmesh t;
+    tmesh t = {0};
     tm_cube(&t);
     int64_t L[12];
     sq_error err;
@@ -514,7 +514,7 @@ static void test_cube(void **state)
 {
     (void)state;
     for (int turned = 0; turned < 4; turned++) {
-        tmesh t;
+        tmesh t = {0};
         tm_cube(&t);
         if (turned) turn_labels(&t);
         int64_t L[12];
@@ -631,7 +631,7 @@ static void test_torus_grid(void **state)
             w[i] = 1 + rnd(6);
             h[i] = 1 + rnd(6);
         }
-        tmesh t;
+        tmesh t = {0};
         tm_grid(&t, a, b, w, h);
         assert_int_equal(t.n_faces, a * b);
         assert_int_equal(t.n_arcs, 2 * a * b);
@@ -677,7 +677,7 @@ static void test_quad_meshes(void **state)
     for (size_t i = 0; i < sizeof quad_models / sizeof *quad_models; i++) {
         char path[512];
         snprintf(path, sizeof path, "%s/data/quads/%s_quadriflow5k.obj", SQ_SHARED_DIR, quad_models[i]);
-        tmesh t;
+        tmesh t = {0};
         assert_true(tm_from_obj(&t, path));
         assert_true(t.n_faces > 4000);
         int64_t *L = malloc(t.n_arcs * sizeof *L);
@@ -721,7 +721,7 @@ static void test_random_tmeshes(void **state)
     double worst = 0.0, gap_sum = 0.0, bound_sum = 0.0;
     int with_halves = 0;
     for (int trial = 0; trial < 60; trial++) {
-        tmesh t;
+        tmesh t = {0};
         tm_random(&t, 1 + rnd(5), 1 + rnd(5), 8 + rnd(8), 5 + rnd(60));
         if (trial % 4) turn_labels(&t);
         int64_t m = 1 + (trial % 3 == 2);
@@ -806,7 +806,7 @@ static void test_for_quads(void **state)
 static void test_large(void **state)
 {
     (void)state;
-    tmesh t;
+    tmesh t = {0};
     tm_random(&t, 70, 70, 12, 4000);
     turn_labels(&t);
     assert_true(t.n_arcs > 20000);
