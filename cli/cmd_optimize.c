@@ -213,6 +213,11 @@ int sq_cmd_optimize(int argc, char **argv)
             sq_json_double(stdout, rep.max_energy_before);
             printf(", \"max_energy_after\": ");
             sq_json_double(stdout, rep.max_energy_after);
+            printf(",\n  \"relax\": {\"moves\": %u, \"stretch_before\": ", rep.relax_moves);
+            sq_json_double(stdout, rep.relax_stretch_before);
+            printf(", \"stretch_after\": ");
+            sq_json_double(stdout, rep.relax_stretch_after);
+            printf("}");
             printf(",\n  \"stopped\": ");
             sq_json_string(stdout, rep.why);
         }
@@ -232,6 +237,9 @@ int sq_cmd_optimize(int argc, char **argv)
         printf("optimizer     %u unknowns (translations %s), %u iterations: %s%s\n", rep.unknowns,
                opt.basis == SQ_OPTIMIZE_FIXED_TRANSITIONS ? "fixed" : "free", rep.iterations, rep.why,
                rep.changed ? "" : "; the map is unchanged");
+        if (rep.relax_moves)
+            printf("relaxed       %u local moves; worst triangle stretch %.3g -> %.3g\n", rep.relax_moves,
+                   rep.relax_stretch_before, rep.relax_stretch_after);
         if (rep.reference_iterations)
             printf("references    %u iterations against progressive references (a triangle's energy\n"
                    "              bounded by %g against its reference)\n",

@@ -1,7 +1,8 @@
 /* seamquad: projected Newton on the symmetric Dirichlet energy of a
  * seamless map, in a basis that keeps it seamless (sq_optimize.h).
  *
- * One iteration:
+ * Step 0: the extreme triangles relaxed by single-vertex jumps
+ * (sq_optimize_relax.c). Then one iteration:
  *  1. the map's corners from the unknowns (he_uv = c + P z; with fixed
  *     transitions exactly seamless, eval_fixed_exact);
  *  2. every triangle's gradient and positive semidefinite Hessian
@@ -111,6 +112,19 @@ typedef struct opt_ctx {
  * 1.583, femur, homer, elk, eight the same). */
 #define PROG_PATIENCE 10
 
+/* Step 0 (sq_optimize_relax.c) moves the vertices (not cones) beside
+ * triangles stretched by more than this (max(s1, 1/s2)): what the
+ * iterations cannot fix, or only slowly. Without progressive references
+ * (quantize's step 5), 100; measured on the published maps' integer-grid
+ * maps at 5K quads, mean |angle - 90| of the quads: helmet 21.25 (at 1e4)
+ * -> 16.77, femur 14.01 -> 11.91, the other 13 models within 0.1 degrees
+ * (bench/bench_quantize.sh). With references, which handle stretches up
+ * to about sqrt(K) themselves, 1e4: at 100, step 0 moved 54 times more
+ * vertices of trim-star's map of param (214,156 moves, 15.7 s per call,
+ * and remesh calls it every round) for the same worst stretch. */
+#define RELAX_BOUND 100.0
+#define RELAX_BOUND_REFERENCES 1e4
+
 static void face_corners(const sq_mesh *m, uint32_t f, uint32_t hc[3])
 {
     hc[0] = m->f_he[f];
@@ -126,15 +140,18 @@ static void face_uv(const sq_mesh *m, const double *he_uv, uint32_t f, double uv
         uv[2 * c] = he_uv[2 * (size_t)hc[c]], uv[2 * c + 1] = he_uv[2 * (size_t)hc[c] + 1];
 }
 
-/* Holds every unknown the face's corners depend on. */
+/* Holds every unknown corner h depends on (hold_face: of all three). */
+static void hold_corner(opt_ctx *X, uint32_t h)
+{
+    for (size_t r = 2 * (size_t)h; r < 2 * (size_t)h + 2; r++)
+        for (uint32_t j = X->B->row_off[r]; j < X->B->row_off[r + 1]; j++) X->held[X->B->col[j]] = 1;
+}
+
 static void hold_face(opt_ctx *X, uint32_t f)
 {
     uint32_t hc[3];
     face_corners(X->m, f, hc);
-    for (int k = 0; k < 6; k++) {
-        size_t r = 2 * (size_t)hc[k / 2] + k % 2;
-        for (uint32_t j = X->B->row_off[r]; j < X->B->row_off[r + 1]; j++) X->held[X->B->col[j]] = 1;
-    }
+    for (int c = 0; c < 3; c++) hold_corner(X, hc[c]);
 }
 
 /* Mean energy of the corners he_uv (INFINITY if a triangle is not positive
@@ -452,15 +469,32 @@ static double fixed_grid(const sq_map *M)
     return h;
 }
 
+/* 1 for the vertices that move with rounding: not cones (which never
+ * move), with a seam edge (a transition that is not the identity) at them */
+static uint8_t *seam_vertices(const sq_map *M)
+{
+    const sq_mesh *m = &M->mesh;
+    uint8_t *s = calloc(m->nv ? m->nv : 1, 1);
+    if (!s) return NULL;
+    for (uint32_t h = 0; h < m->nh; h++)
+        if (M->he_rot[h] != 0 || M->he_t[2 * (size_t)h] != 0 || M->he_t[2 * (size_t)h + 1] != 0)
+            s[m->he_vert[h]] = s[m->he_vert[m->he_next[h]]] = 1;
+    for (uint32_t v = 0; v < m->nv; v++)
+        if (M->valence[v] != 4) s[v] = 0;
+    return s;
+}
+
 /* The corners for the unknowns z, exactly seamless: a vertex whose
  * unknowns equal the input's keeps its corners bit for bit; a moved
- * vertex's first corner takes its point rounded to the grid h, and its
- * other corners follow around it by the transitions (sq_map_apply, exact
- * on the grid). No snapping of the whole map: the triangles of a
- * refinement far below any global grid (param's maps) keep their bits.
+ * vertex on a seam takes its first corner's point rounded to the grid h,
+ * and its other corners follow around it by the transitions
+ * (sq_map_apply, exact on the grid); a moved vertex without a seam takes
+ * its point as it is (all its corners are one, nothing to add), so the
+ * slivers of a refinement far below any global grid (param's maps) can
+ * move at their own scale. No snapping of the whole map.
  * Returns 0 if a sum was not exact (a point outside the grid's range). */
 static int eval_fixed_exact(const sq_map *M, const sq_uv_basis *B, const double *z, double h,
-                            double *out)
+                            const uint8_t *vseam, double *out)
 {
     const sq_mesh *m = &M->mesh;
     memcpy(out, M->he_uv, 2 * (size_t)m->nh * sizeof *out);
@@ -471,7 +505,8 @@ static int eval_fixed_exact(const sq_map *M, const sq_uv_basis *B, const double 
         uint32_t u = B->col[B->row_off[r]];
         assert(B->val[B->row_off[r]] == 1.0 && B->col[B->row_off[r + 1]] == u + 1);
         if (z[u] == B->z0[u] && z[u + 1] == B->z0[u + 1]) continue;
-        double p[2] = {nearbyint(z[u] / h) * h, nearbyint(z[u + 1] / h) * h};
+        double p[2] = {z[u], z[u + 1]};
+        if (vseam[v]) p[0] = nearbyint(p[0] / h) * h, p[1] = nearbyint(p[1] / h) * h;
         uint32_t k = h0;
         do {
             out[2 * (size_t)k] = p[0];
@@ -537,18 +572,12 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
     X.m = m;
     sq_uv_basis B;
     memset(&B, 0, sizeof B);
-    st = fixed ? sq_uv_basis_fixed_transitions(M, &B, err) : sq_uv_basis_free_translations(M, &B, err);
-    if (st) return st;
-    X.B = &B;
-    rep->unknowns = B.nz;
-    rep->seconds_basis = sq_now() - t0;
-
     size_t nc = 2 * (size_t)m->nh;
     double *orig = malloc(nc * sizeof *orig), *orig_t = malloc(nc * sizeof *orig_t);
     double *uv = malloc(nc * sizeof *uv), *trial = malloc(nc * sizeof *trial);
     double *duv = malloc(nc * sizeof *duv);
-    double *z = malloc(((size_t)B.nz + 1) * sizeof *z), *zt = malloc(((size_t)B.nz + 1) * sizeof *zt);
-    double *gz = malloc(((size_t)B.nz + 1) * sizeof *gz), *d = malloc(((size_t)B.nz + 1) * sizeof *d);
+    double *z = NULL, *zt = NULL, *gz = NULL, *d = NULL;
+    uint8_t *vseam = NULL;
     uint8_t *orig_rot = malloc(m->nh);
     X.F = calloc(m->nf, sizeof *X.F);
     X.E = X.F;
@@ -557,14 +586,13 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (optimizer references)");
         goto done;
     }
-    if (!orig || !orig_t || !uv || !trial || !duv || !z || !zt || !gz || !d || !orig_rot || !X.F) {
+    if (!orig || !orig_t || !uv || !trial || !duv || !orig_rot || !X.F) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (optimizer, %u faces)", m->nf);
         goto done;
     }
     memcpy(orig, M->he_uv, nc * sizeof *orig);
     memcpy(orig_t, M->he_t, nc * sizeof *orig_t);
     memcpy(orig_rot, M->he_rot, m->nh);
-    memcpy(z, B.z0, B.nz * sizeof *z);
 
     /* the surface scaled to the map's area */
     double a3 = 0, auv = 0;
@@ -587,6 +615,34 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
                       m->pos + 3 * (size_t)m->he_vert[hc[2]], scale, &X.F[f]);
         total += X.F[f].area;
     }
+    /* step 0: the extreme triangles relaxed by local moves that Newton's
+     * rounded steps cannot make (sq_optimize_relax.c; RELAX_BOUND). The
+     * relaxed map is exact and valid: it is the start, and what comes back
+     * if the iterations fail. */
+    sq_relax_report rr;
+    double rb = opt->relax_bound > 0 ? opt->relax_bound : X.R ? RELAX_BOUND_REFERENCES : RELAX_BOUND;
+    memset(&rr, 0, sizeof rr);
+    if (isfinite(rb) && (st = sq_optimize_relax(M, X.F, rb, fixed_grid(M), M->he_uv, &rr, err))) goto done;
+    rep->relax_moves = (uint32_t)(rr.moves > UINT32_MAX ? UINT32_MAX : rr.moves);
+    rep->relax_stretch_before = rr.worst_before;
+    rep->relax_stretch_after = rr.worst_after;
+    if (rr.moves > 0) {
+        rep->changed = 1;
+        memcpy(orig, M->he_uv, nc * sizeof *orig);
+    }
+    st = fixed ? sq_uv_basis_fixed_transitions(M, &B, err) : sq_uv_basis_free_translations(M, &B, err);
+    if (st) goto done;
+    X.B = &B;
+    rep->unknowns = B.nz;
+    rep->seconds_basis = sq_now() - t0;
+    z = malloc(((size_t)B.nz + 1) * sizeof *z), zt = malloc(((size_t)B.nz + 1) * sizeof *zt);
+    gz = malloc(((size_t)B.nz + 1) * sizeof *gz), d = malloc(((size_t)B.nz + 1) * sizeof *d);
+    if (!z || !zt || !gz || !d) {
+        st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (optimizer, %u unknowns)", B.nz);
+        goto done;
+    }
+    memcpy(z, B.z0, B.nz * sizeof *z);
+
     /* weight floor (see WEIGHT_FLOOR) */
     double floor_w = WEIGHT_FLOOR * total / m->nf;
     X.floor_r = total / m->nf; /* see PROG_PATIENCE */
@@ -609,16 +665,34 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         goto done;
     }
     if (hgrid > 0) {
-        /* a triangle with a side below TINY_SIDE grid steps would change
-         * shape when its corners round to the grid: it is held */
+        /* a triangle with a corner on a seam and a side or a height below
+         * TINY_SIDE grid steps would change shape, or flip, when that
+         * corner rounds to the grid: its seam corners are held (its other
+         * corners move unrounded, checked exactly like every triangle) */
+        if (!(vseam = seam_vertices(M))) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (optimizer)");
+            goto done;
+        }
         for (uint32_t f = 0; f < m->nf; f++) {
+            uint32_t hc[3];
+            face_corners(m, f, hc);
+            if (!vseam[m->he_vert[hc[0]]] && !vseam[m->he_vert[hc[1]]] && !vseam[m->he_vert[hc[2]]]) continue;
             double a6[6];
             face_uv(m, uv, f, a6);
-            double l = fmin(hypot(a6[2] - a6[0], a6[3] - a6[1]),
-                            fmin(hypot(a6[4] - a6[2], a6[5] - a6[3]), hypot(a6[0] - a6[4], a6[1] - a6[5])));
+            double l0 = hypot(a6[2] - a6[0], a6[3] - a6[1]), l1 = hypot(a6[4] - a6[2], a6[5] - a6[3]);
+            double l2 = hypot(a6[0] - a6[4], a6[1] - a6[5]);
+            double cross = (a6[2] - a6[0]) * (a6[5] - a6[1]) - (a6[3] - a6[1]) * (a6[4] - a6[0]);
+            double l = fmin(fmin(l0, l1), fmin(l2, fabs(cross) / fmax(l0, fmax(l1, l2))));
             if (l >= TINY_SIDE * hgrid) continue;
             rep->held_triangles++;
-            hold_face(&X, f);
+            int frozen = 0;
+            for (int c = 0; c < 3; c++) {
+                uint32_t v = m->he_vert[hc[c]];
+                if (vseam[v]) hold_corner(&X, hc[c]);
+                if (vseam[v] || M->valence[v] != 4) frozen++;
+            }
+            /* all its corners frozen: its energy is constant, left out */
+            if (frozen == 3) X.F[f].area = 0;
         }
     }
     double e = energy(&X, uv, &rep->max_energy_before);
@@ -690,7 +764,7 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         for (int ls = 0; ls < 60 && alpha > 0; ls++, alpha *= 0.5) {
             for (uint32_t i = 0; i < B.nz; i++) zt[i] = z[i] + alpha * d[i];
             if (hgrid > 0) {
-                if (!eval_fixed_exact(M, &B, zt, hgrid, trial)) continue;
+                if (!eval_fixed_exact(M, &B, zt, hgrid, vseam, trial)) continue;
             } else {
                 sq_uv_basis_eval(&B, zt, trial);
             }
@@ -768,6 +842,7 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         goto done;
     }
     rep->changed = 1;
+    rep->iterate_kept = 1;
     rep->energy_after = after;
     rep->max_energy_after = after_max;
 done:
@@ -788,6 +863,7 @@ done:
     free(X.h_val);
     free(X.h_row);
     free(X.held);
+    free(vseam);
     sq_spd_free(X.fac);
     sq_uv_basis_free(&B);
     rep->seconds = sq_now() - t0;

@@ -55,6 +55,10 @@ typedef struct sq_optimize_options {
      * (sq_optimize.c, PROG_PATIENCE): 0 gives SQ_OPTIMIZE_REFERENCE_BOUND;
      * INFINITY (or any value <= 4) turns them off */
     double reference_bound;
+    /* step 0 (sq_optimize_relax.c) moves the vertices beside triangles
+     * stretched by more than this: 0 gives 100 without references, 1e4
+     * with them (sq_optimize.c, RELAX_BOUND); INFINITY skips step 0 */
+    double relax_bound;
     /* 1: the last iterate is returned (if it passes the exact check) even
      * when its energy against the surface is above the input's, as it may
      * be after a few iterations with progressive references; for callers
@@ -78,7 +82,13 @@ typedef struct sq_optimize_report {
     double energy_after;
     double max_energy_before; /* of the worst triangle                               */
     double max_energy_after;
-    int changed;              /* 1 if M was replaced by the optimized map            */
+    uint32_t relax_moves;     /* step 0: local moves of vertices beside extreme      */
+                              /* triangles (sq_optimize_relax.c)                     */
+    double relax_stretch_before; /* the largest stretch max(s1, 1/s2) of a triangle  */
+    double relax_stretch_after;  /* before and after step 0                          */
+    int changed;              /* 1 if M was changed (step 0 or the iterations)       */
+    int iterate_kept;         /* 1 if the iterations' last map is M (it passed the   */
+                              /* exact check and lowered the energy)                 */
     char why[160];            /* why the optimization stopped, or was not applied    */
     double seconds_basis, seconds_solve, seconds;
 } sq_optimize_report;

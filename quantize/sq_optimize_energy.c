@@ -204,3 +204,32 @@ double sq_sd_max_step(const double uv[6], const double duv[6])
     }
     return t;
 }
+
+/* a*d - b*c with the rounding of b*c compensated (Kahan) */
+static double det2(double a, double b, double c, double d)
+{
+    double w = b * c;
+    double e = fma(-b, c, w);
+    double f = fma(a, d, -w);
+    return f + e;
+}
+
+/* sq_optimize_internal.h. The corners are taken relative to the first; the
+ * determinant is the UV cross product (FMA-compensated) times det X^-1, so
+ * a triangle of width 1e-93 is measured right. */
+double sq_sd_log_stretch(const sq_sd_face *F, const double uv[6])
+{
+    double du1 = uv[2] - uv[0], dv1 = uv[3] - uv[1], du2 = uv[4] - uv[0], dv2 = uv[5] - uv[1];
+    /* J[a][b] = sum_c uv[c][a] G[c][b], with corner 0 at the origin */
+    double J00 = du1 * F->G[1][0] + du2 * F->G[2][0], J01 = du1 * F->G[1][1] + du2 * F->G[2][1];
+    double J10 = dv1 * F->G[1][0] + dv2 * F->G[2][0], J11 = dv1 * F->G[1][1] + dv2 * F->G[2][1];
+    double cross = det2(du1, du2, dv1, dv2);
+    double dxi = det2(F->G[1][0], F->G[1][1], F->G[2][0], F->G[2][1]);
+    double det = cross * dxi;
+    double E = 0.5 * (J00 + J11), Fh = 0.5 * (J00 - J11), Gh = 0.5 * (J10 + J01), H = 0.5 * (J10 - J01);
+    double s1 = hypot(E, H) + hypot(Fh, Gh);
+    if (!(det > 0) || !(s1 > 0) || !isfinite(s1)) return 1000.0;
+    double s2 = det / s1;
+    if (!(s2 > 0)) return 1000.0;
+    return fmax(log(s1), -log(s2));
+}

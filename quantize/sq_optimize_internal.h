@@ -3,6 +3,11 @@
 #ifndef SQ_OPTIMIZE_INTERNAL_H
 #define SQ_OPTIMIZE_INTERNAL_H
 
+#include <stdint.h>
+
+#include "sq_error.h"
+#include "sq_map.h"
+
 typedef struct sq_sd_face {
     double area;     /* on the (scaled) surface; 0: left out of the energy */
     double G[3][2];  /* J = uv G (uv: the 2x3 matrix of corners)           */
@@ -33,5 +38,25 @@ double sq_sd_reference(const sq_sd_face *F, const double uv[6], double K, sq_sd_
 /* The smallest alpha > 0 at which the triangle uv + alpha duv degenerates
  * (INFINITY if none). */
 double sq_sd_max_step(const double uv[6], const double duv[6]);
+
+/* The log of the worst stretch max(s1, 1/s2) of the triangle uv (corners in
+ * F's order; s1 >= s2 the singular values of J). A triangle whose
+ * determinant rounds to zero or below (it may be positive exactly) gets
+ * 1000, beyond any double's. */
+double sq_sd_log_stretch(const sq_sd_face *F, const double uv[6]);
+
+/* sq_optimize_relax.c: the vertices (not cones) beside triangles stretched
+ * by more than `bound` (max(s1, 1/s2) against F) moved to lower the worst
+ * stretch of their triangles, every move checked exactly; those on a seam
+ * only if grid > 0 (their first corner rounded to it, the others by the
+ * transitions, every sum exact). he_uv (the map's corners) is changed
+ * in place and stays an exact map with the same transitions. */
+typedef struct sq_relax_report {
+    uint64_t moves, tries;
+    double worst_before, worst_after; /* the largest stretch over the map */
+} sq_relax_report;
+
+sq_status sq_optimize_relax(const sq_map *M, const sq_sd_face *F, double bound, double grid,
+                            double *he_uv, sq_relax_report *rep, sq_error *err);
 
 #endif

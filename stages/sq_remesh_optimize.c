@@ -74,7 +74,7 @@ sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param 
         o.keep_last = 1; /* a round may raise the surface energy on the way */
         sq_optimize_report r;
         if ((st = sq_optimize_map(M, &o, &r, err))) return st;
-        if (!r.changed && o.basis == SQ_OPTIMIZE_FREE_TRANSLATIONS) {
+        if (!r.iterate_kept && o.basis == SQ_OPTIMIZE_FREE_TRANSLATIONS) {
             /* With free translations the result is snapped to a dyadic
              * grid, which flips triangles far below it (param's rectangles'
              * maps have them); with the translations fixed every iterate is

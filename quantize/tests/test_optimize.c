@@ -25,7 +25,11 @@
  *    map over it is a pure stretch (a symmetric Jacobian); a triangle within
  *    K keeps its surface shape; on param's map of knot1 (mean energy 2e6),
  *    10 iterations with references end at less than half the energy of 10
- *    without, and the map is still exact with the same rotations. */
+ *    without, and the map is still exact with the same rotations;
+ *  - step 0, the relaxation, on param's map of fandisk: its thinnest
+ *    triangle (1e-93 of its longest side squared) widens by more than 50
+ *    orders of magnitude, with the transitions and the cones' corners bit
+ *    for bit. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -561,6 +565,7 @@ static void test_progressive_param(void **state)
         opt.basis = SQ_OPTIMIZE_FREE_TRANSLATIONS;
         opt.max_iterations = 10;
         opt.reference_bound = k == 0 ? 0 : INFINITY;
+        opt.relax_bound = INFINITY; /* the iterations alone, from the same start */
         if (sq_optimize_map(&M[k], &opt, &rep[k], &err)) fail_msg("%s", err.msg);
         print_message("knot1 param, references %s: energy %.4g -> %.4g in %u iterations (%u with references)\n",
                       k ? "off" : "on", rep[k].energy_before, rep[k].energy_after, rep[k].iterations,
@@ -578,6 +583,88 @@ static void test_progressive_param(void **state)
     unload(&md);
 }
 
+/* the thinnest UV triangle, 2 area / (longest side)^2 (scale-free), and
+ * whether every corner of the vertices of valence != 4 is as in `ref` */
+static double thinnest(const sq_map *M)
+{
+    const sq_mesh *m = &M->mesh;
+    double thin = INFINITY;
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h = m->f_he[f];
+        const double *a = M->he_uv + 2 * (size_t)h, *b = M->he_uv + 2 * (size_t)m->he_next[h];
+        const double *c = M->he_uv + 2 * (size_t)m->he_next[m->he_next[h]];
+        double l = fmax(fmax(hypot(b[0] - a[0], b[1] - a[1]), hypot(c[0] - b[0], c[1] - b[1])),
+                        hypot(a[0] - c[0], a[1] - c[1]));
+        /* (b - a) x (c - a) with the product's rounding compensated */
+        double p = (c[0] - a[0]) * (b[1] - a[1]);
+        double e = fma(c[0] - a[0], b[1] - a[1], -p);
+        double cross = fma(b[0] - a[0], c[1] - a[1], -p) - e;
+        thin = fmin(thin, cross / (l * l));
+    }
+    return thin;
+}
+
+/* Step 0 (sq_optimize_relax.c) on param's map of fandisk, whose slivers
+ * (1e-93 wide) Newton's rounded steps cannot move: one iteration with fixed
+ * transitions; the thinnest triangle must widen by more than 50 orders of
+ * magnitude, the worst stretch the report gives likewise, and the map stay
+ * exact with the same transitions and the cones where they were. */
+static void test_relax_param(void **state)
+{
+    (void)state;
+    model md;
+    sq_error err;
+    load("fandisk", &md);
+    sq_param P;
+    sq_param_init(&P);
+    if (sq_param_build(&md.mesh, md.valence, NULL, &P, NULL, &err)) fail_msg("param: %s", err.msg);
+    char path[256];
+    snprintf(path, sizeof path, "/tmp/sq_test_optimize_r_%d.obj", (int)getpid());
+    if (sq_param_write_obj(path, &P, &err)) fail_msg("%s", err.msg);
+    sq_param_free(&P);
+    sq_map M;
+    if (sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, &M, NULL, &err))
+        fail_msg("param map read back: %s", err.msg);
+    unlink(path);
+    const sq_mesh *m = &M.mesh;
+    double *uv0 = malloc(2 * (size_t)m->nh * sizeof *uv0), *t0 = malloc(2 * (size_t)m->nh * sizeof *t0);
+    uint8_t *rot0 = malloc(m->nh);
+    assert_non_null(uv0);
+    assert_non_null(t0);
+    assert_non_null(rot0);
+    memcpy(uv0, M.he_uv, 2 * (size_t)m->nh * sizeof *uv0);
+    memcpy(t0, M.he_t, 2 * (size_t)m->nh * sizeof *t0);
+    memcpy(rot0, M.he_rot, m->nh);
+    double thin0 = thinnest(&M);
+    sq_optimize_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.basis = SQ_OPTIMIZE_FIXED_TRANSITIONS;
+    opt.max_iterations = 1;
+    sq_optimize_report rep;
+    if (sq_optimize_map(&M, &opt, &rep, &err)) fail_msg("%s", err.msg);
+    double thin1 = thinnest(&M);
+    print_message("fandisk param: %u relaxation moves, worst stretch %.3g -> %.3g, thinnest triangle "
+                  "%.3g -> %.3g\n",
+                  rep.relax_moves, rep.relax_stretch_before, rep.relax_stretch_after, thin0, thin1);
+    assert_true(rep.relax_moves > 0 && rep.changed);
+    assert_true(thin0 > 0 && thin0 < 1e-80);
+    assert_true(thin1 > 1e50 * thin0);
+    assert_true(rep.relax_stretch_before > 1e50 * rep.relax_stretch_after);
+    if (sq_map_check(&M, 0, &err)) fail_msg("%s", err.msg);
+    assert_memory_equal(rot0, M.he_rot, m->nh);
+    for (uint32_t k = 0; k < 2 * m->nh; k++) assert_true(t0[k] == M.he_t[k]);
+    for (uint32_t h = 0; h < m->nh; h++)
+        if (M.valence[m->he_vert[h]] != 4) {
+            assert_true(M.he_uv[2 * (size_t)h] == uv0[2 * (size_t)h]);
+            assert_true(M.he_uv[2 * (size_t)h + 1] == uv0[2 * (size_t)h + 1]);
+        }
+    free(uv0);
+    free(t0);
+    free(rot0);
+    sq_map_free(&M);
+    unload(&md);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -586,7 +673,7 @@ int main(void)
         cmocka_unit_test(test_optimize_igm),     cmocka_unit_test(test_refuses_bad_map),
         cmocka_unit_test(test_param_igm),        cmocka_unit_test(test_reference),
         cmocka_unit_test(test_hessian_projection),
-        cmocka_unit_test(test_progressive_param),
+        cmocka_unit_test(test_progressive_param), cmocka_unit_test(test_relax_param),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
