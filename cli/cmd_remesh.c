@@ -41,9 +41,10 @@ static void help(FILE *f)
             "            surface are relaxed, and any left fail the run\n"
             "  smooth    the vertices moved on MESH toward right angles and even edges,\n"
             "            then some held on MESH's sharp points where the quads would\n"
-            "            cut them off (`seamquad smooth`); no step folds a quad, and\n"
-            "            the unsmoothed quads are kept where the smoothed ones would\n"
-            "            fail verify\n"
+            "            cut them off (`seamquad smooth`); no step folds a quad; where\n"
+            "            the smoothed quads turn over, or fail verify even after its\n"
+            "            repair, the vertices involved go back to their unsmoothed\n"
+            "            places (all of them if that is not enough)\n"
             "  verify    the quads, each split along its shorter diagonal, must not\n"
             "            intersect each other where the input does not intersect\n"
             "            itself (CGAL's exact test); where they do, the vertices of\n"
@@ -211,7 +212,8 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
                s->smooth.before.angle_min_deg, s->smooth.after.angle_min_deg, s->smooth.iterations,
                s->smooth.pinned, s->t_smooth);
         if (s->smooth_kept)
-            printf("              %u vertices kept unsmoothed around quads smoothing turned over\n",
+            printf("              %u vertices kept unsmoothed around quads smoothing turned over\n"
+                   "              or made intersect\n",
                    s->smooth_kept);
     } else if (s->smooth_reverted)
         printf("smooth        not kept (%s), %.2f s\n", s->smooth_why, s->t_smooth);

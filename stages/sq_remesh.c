@@ -207,6 +207,63 @@ static sq_status revert_turned(const sq_mesh *m, sq_quad_mesh *Q, const double *
     return st;
 }
 
+/* Where the smoothed quads intersect themselves and the unsmoothed ones
+ * (keep) do not: the vertices of the quads involved, then also 1 to 16
+ * rings around them, back at their unsmoothed places, until no pair is
+ * left and no quad is turned or folded. Returns in *left the pairs left
+ * (0: done; else Q->pos is as it came); *kept the vertices put back. */
+static sq_status revert_intersecting(const sq_mesh *m, sq_quad_mesh *Q, const double *keep, uint64_t *left,
+                                     uint32_t *kept, sq_error *err)
+{
+    enum { LIST = 65536 };
+    *kept = 0;
+    uint32_t *list = malloc(2 * (size_t)LIST * sizeof *list);
+    uint8_t *mark = calloc((size_t)Q->nv + 1, 1), *grow = malloc((size_t)Q->nv + 1);
+    double *start = malloc(3 * ((size_t)Q->nv + 1) * sizeof *start);
+    sq_quad_star S = {NULL, NULL, NULL};
+    on_surface o;
+    memset(&o, 0, sizeof o);
+    sq_status st = SQ_OK;
+    if (!list || !mark || !grow || !start) st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (verify)");
+    if (!st) st = sq_remesh_quad_intersections(Q, left, list, LIST, err);
+    if (!st && *left) st = on_surface_init(m, Q->nv, &o, err);
+    if (!st && *left) st = sq_quad_star_build(Q->nv, Q->nq, Q->quad, &S, err);
+    if (!st && *left) {
+        memcpy(start, Q->pos, 3 * (size_t)Q->nv * sizeof *start);
+        uint64_t n = *left < LIST ? *left : LIST;
+        for (uint64_t k = 0; k < 2 * n; k++)
+            for (int c = 0; c < 4; c++) mark[Q->quad[4 * (size_t)list[k] + c]] = 1;
+        for (int ring = 0; ring <= 16 && *left && !st; ring++) {
+            if (ring) {
+                memcpy(grow, mark, Q->nv);
+                for (uint32_t v = 0; v < Q->nv; v++)
+                    if (mark[v])
+                        for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++) grow[S.next[k]] = 1;
+                memcpy(mark, grow, Q->nv);
+            }
+            *kept = 0;
+            for (uint32_t v = 0; v < Q->nv; v++)
+                if (mark[v]) memcpy(Q->pos + 3 * (size_t)v, keep + 3 * (size_t)v, 3 * sizeof *keep), ++*kept;
+            if ((st = sq_remesh_quad_intersections(Q, left, NULL, 0, err))) break;
+            if (*left) continue;
+            uint32_t bad = 0;
+            on_surface_locate(&o, Q);
+            if ((st = sq_quad_mesh_count_turned(Q, m, o.vn, o.face, o.bary, &bad, NULL, NULL, err))) break;
+            for (uint32_t f = 0; f < Q->nq && !bad; f++) {
+                const uint32_t *q = Q->quad + 4 * (size_t)f;
+                bad += sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1],
+                                           Q->pos + 3 * (size_t)q[2], Q->pos + 3 * (size_t)q[3]) < 0.0;
+            }
+            if (bad) *left = 1; /* not done: a wider ring */
+        }
+        if (!st && *left) memcpy(Q->pos, start, 3 * (size_t)Q->nv * sizeof *start), *kept = 0;
+    }
+    on_surface_free(&o);
+    sq_quad_star_free(&S);
+    free(list), free(mark), free(grow), free(start);
+    return st;
+}
+
 /* Stage 7: Q smoothed on m's surface. Q->pos becomes the smoothed
  * positions, and *raw (malloc'ed) the unsmoothed ones, when smoothing
  * succeeds with no quad folded; otherwise Q is unchanged, *raw NULL and
@@ -434,16 +491,41 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
             out->quads.pos = smoothed;
             goto fail;
         }
+        out->quads.pos = smoothed;
         if (pairs == 0) {
-            snprintf(stats->smooth_why, sizeof stats->smooth_why,
-                     "%llu pairs of the smoothed quads' triangles intersect, none of the unsmoothed",
-                     (unsigned long long)stats->self_intersections);
-            stats->self_intersections = 0;
-            stats->smoothed = 0;
-            stats->smooth_reverted = 1;
-            raw = smoothed;
-        } else {
-            out->quads.pos = smoothed;
+            /* the smoothed quads repaired if they can be (where the input
+             * does not intersect itself), else those involved (and rings
+             * around them) put back unsmoothed, else all unsmoothed */
+            uint64_t in = 0, left = 1, found = stats->self_intersections;
+            uint32_t rounds = 0;
+            st = mesh_self_intersections(m, &in, err);
+            if (st) goto fail;
+            stats->input_self_intersections = (int64_t)in;
+            if (in == 0) {
+                st = sq_remesh_repair_intersections(m, &out->quads, &left, &rounds, err);
+                if (st) goto fail;
+            }
+            uint32_t kept = 0;
+            if (left != 0) { /* the repair's best, then the quads involved unsmoothed */
+                st = revert_intersecting(m, &out->quads, raw, &left, &kept, err);
+                if (st) goto fail;
+            }
+            if (left == 0) {
+                stats->repaired = kept ? 0 : found;
+                stats->repair_rounds = rounds;
+                stats->smooth_kept += kept;
+                stats->self_intersections = 0;
+            } else {
+                snprintf(stats->smooth_why, sizeof stats->smooth_why,
+                         "%llu pairs of the smoothed quads' triangles intersect, none of the unsmoothed",
+                         (unsigned long long)found);
+                stats->self_intersections = 0;
+                stats->smoothed = 0;
+                stats->smooth_reverted = 1;
+                out->quads.pos = raw;
+                raw = smoothed;
+            }
+            stats->t_verify = sq_now() - t1;
         }
     }
     if (stats->self_intersections > 0) {
@@ -470,6 +552,9 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
             goto fail;
         }
     }
+    /* the smoothed quads' figures are those returned (after the repair and
+     * what went back unsmoothed) */
+    if (stats->smoothed) sq_quad_quality_compute(out->quads.pos, out->quads.nq, out->quads.quad, &stats->smooth.after);
     /* no quad the referee would reject as degenerate */
     st = check_final_shapes(m, &out->quads, err);
     stats->t_verify = sq_now() - t1;

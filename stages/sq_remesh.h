@@ -19,9 +19,10 @@
  *     fails the run;
  *  7. smooth (unless no_smoothing): the quads' vertices moved on the input
  *     surface toward right angles and even edges (sq_smooth_quads: Ceres,
- *     no step folds a quad); the unsmoothed quads are kept when smoothing
- *     fails, turns a quad over, or its result fails the verify stage where
- *     theirs passes;
+ *     no step folds a quad); where it turns quads over, or makes them
+ *     intersect where the unsmoothed quads do not (and the verify stage's
+ *     repair cannot undo it), the vertices involved and rings around them
+ *     go back to their unsmoothed places; all of them when that fails;
  *  8. verify: the quad surface (each quad split along its shorter
  *     diagonal) must not intersect itself where the input does not
  *     (CGAL's exact test, sq_cgal_adapter.h; where it does, the quads
@@ -112,13 +113,15 @@ typedef struct sq_remesh_stats {
     sq_quantize_stats quantize;
     sq_extract_stats extract;
     sq_untangle_stats untangle;
-    sq_smooth_stats smooth;        /* stage 7 (quality before and after)     */
+    sq_smooth_stats smooth;        /* stage 7 (quality before and after; the */
+                                   /* latter of the quads returned)          */
     int smoothed;                  /* 1: the quads returned are smoothed     */
     int smooth_reverted;           /* 1: smoothed, but the unsmoothed quads  */
                                    /* were returned (smooth_why says why)    */
     char smooth_why[160];
     uint32_t smooth_kept;          /* vertices left unsmoothed: around quads  */
-                                   /* that smoothing turned over             */
+                                   /* that smoothing turned over or made     */
+                                   /* intersect                              */
     uint64_t self_intersections;   /* intersecting pairs of the quads'       */
                                    /* triangles (each quad split along its   */
                                    /* shorter diagonal; CGAL)                */

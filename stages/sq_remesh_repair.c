@@ -26,19 +26,37 @@
 #define REPAIR_ROUNDS 20u
 #define REPAIR_LIST 65536u
 
+typedef struct tri_key {
+    uint32_t v[3]; /* sorted corners */
+    uint32_t quad;
+} tri_key;
+
+static int cmp_tri_key(const void *a, const void *b)
+{
+    const tri_key *x = a, *y = b;
+    for (int i = 0; i < 3; i++)
+        if (x->v[i] != y->v[i]) return x->v[i] < y->v[i] ? -1 : 1;
+    return (x->quad > y->quad) - (x->quad < y->quad);
+}
+
 /* The quads' intersecting triangle pairs, each quad split along its
  * shorter diagonal (as the referee splits them), or along the other where
  * the shorter one is already an edge of the quads or another quad's
  * diagonal: two quads that share two opposite corners (beside a cone of
  * high valence: mpz/helmet's) would otherwise give one edge four
- * triangles, which the test cannot take. */
+ * triangles, which the test cannot take. Two triangles of the referee's
+ * split with the same three corners count as one more pair each (two
+ * quads around a cone of valence 2, both split along the diagonal that
+ * does not touch it: mpz/rocker_arm's at 1K quads); the test of the
+ * other split cannot see them. */
 sq_status sq_remesh_quad_intersections(const sq_quad_mesh *Q, uint64_t *pairs, uint32_t *list, uint32_t cap,
                                        sq_error *err)
 {
     uint32_t *tri = malloc(6 * ((size_t)Q->nq + 1) * sizeof *tri);
+    tri_key *keys = malloc(2 * ((size_t)Q->nq + 1) * sizeof *keys);
     sq_edge_hash H;
-    if (!tri || sq_edge_hash_init(&H, 4 * (size_t)Q->nq) != 0) { /* edges, both diagonals */
-        free(tri);
+    if (!tri || !keys || sq_edge_hash_init(&H, 4 * (size_t)Q->nq) != 0) { /* edges, both diagonals */
+        free(tri), free(keys);
         return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (self-intersection test)");
     }
     for (size_t i = 0; i < 4 * (size_t)Q->nq; i++) {
@@ -54,6 +72,12 @@ sq_status sq_remesh_quad_intersections(const sq_quad_mesh *Q, uint64_t *pairs, u
             d02 += a * a, d13 += b * b;
         }
         int k = d02 <= d13 ? 0 : 1; /* the diagonal from corner k to k + 2 */
+        for (int j = 0; j < 2; j++) { /* the referee's triangles */
+            uint32_t a = c[k], b = c[(k + 1 + 2 * j) % 4], d = c[(k + 2) % 4];
+            uint32_t lo = a < b ? (a < d ? a : d) : (b < d ? b : d), hi = a > b ? (a > d ? a : d) : (b > d ? b : d);
+            tri_key *K = keys + 2 * (size_t)q + j;
+            K->v[0] = lo, K->v[1] = a + b + d - lo - hi, K->v[2] = hi, K->quad = q;
+        }
         size_t slot[2];
         for (int j = 0; j < 2; j++) {
             const uint32_t a = c[j], b = c[j + 2];
@@ -70,7 +94,17 @@ sq_status sq_remesh_quad_intersections(const sq_quad_mesh *Q, uint64_t *pairs, u
     sq_status st = sq_cgal_self_intersections(Q->nv, Q->pos, 2 * Q->nq, tri, pairs, list, cap, err);
     if (list) /* triangles 2q and 2q + 1 are quad q's */
         for (uint64_t k = 0; k < 2 * (*pairs < cap ? *pairs : cap); k++) list[k] /= 2;
+    if (!st) {
+        qsort(keys, 2 * (size_t)Q->nq, sizeof *keys, cmp_tri_key);
+        for (size_t i = 0; i + 1 < 2 * (size_t)Q->nq; i++) {
+            if (memcmp(keys[i].v, keys[i + 1].v, sizeof keys[i].v) != 0) continue;
+            if (list && *pairs < cap)
+                list[2 * *pairs] = keys[i].quad, list[2 * *pairs + 1] = keys[i + 1].quad;
+            ++*pairs;
+        }
+    }
     free(tri);
+    free(keys);
     return st;
 }
 
