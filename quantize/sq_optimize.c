@@ -627,8 +627,16 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
     rep->relax_stretch_before = rr.worst_before;
     rep->relax_stretch_after = rr.worst_after;
     if (rr.moves > 0) {
-        rep->changed = 1;
-        memcpy(orig, M->he_uv, nc * sizeof *orig);
+        /* every move kept the transitions, the cones and v's angle sum;
+         * checked all the same, the input back if it fails */
+        if (sq_map_check(M, check_flags, &tmp)) {
+            memcpy(M->he_uv, orig, nc * sizeof *orig);
+            rep->relax_moves = 0;
+            rep->relax_stretch_after = rep->relax_stretch_before;
+        } else {
+            rep->changed = 1;
+            memcpy(orig, M->he_uv, nc * sizeof *orig);
+        }
     }
     st = fixed ? sq_uv_basis_fixed_transitions(M, &B, err) : sq_uv_basis_free_translations(M, &B, err);
     if (st) goto done;

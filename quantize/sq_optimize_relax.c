@@ -120,10 +120,13 @@ static void face_uv(const sq_mesh *m, const double *he_uv, uint32_t f, double uv
 }
 
 /* The worst log stretch of v's triangles with its corners at R->uv; -1 if
- * one of them would not be positive (exact). */
+ * one of them would not be positive (exact), or if the angles at v would
+ * not sum to 2 pi: a jump (unlike a continuous step) can land where a
+ * self-overlapping ring of neighbours winds twice, every triangle positive
+ * around a new cone. */
 static double ring_worst(const sq_mesh *m, const sq_sd_face *F, const double *he_uv, const ring *R)
 {
-    double worst = 0;
+    double worst = 0, angles = 0;
     for (uint32_t k = 0; k < R->n; k++) {
         uint32_t h = R->he[k], f = m->he_face[h];
         double uv[6];
@@ -131,9 +134,10 @@ static double ring_worst(const sq_mesh *m, const sq_sd_face *F, const double *he
         uint32_t c = m->f_he[f] == h ? 0 : m->he_next[m->f_he[f]] == h ? 1 : 2;
         uv[2 * c] = R->uv[2 * k], uv[2 * c + 1] = R->uv[2 * k + 1];
         if (sq_orient2d(uv, uv + 2, uv + 4) <= 0) return -1;
+        angles += sq_map_corner_angle(uv + 2 * ((c + 2) % 3), uv + 2 * c, uv + 2 * ((c + 1) % 3));
         if (F[f].area > 0) worst = fmax(worst, sq_sd_log_stretch(&F[f], uv));
     }
-    return worst;
+    return fabs(angles - 4 * SQ_MAP_HALF_PI) < 1.0 ? worst : -1;
 }
 
 /* The two targets of v in the chart of its first corner: the mean of its
