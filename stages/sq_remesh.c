@@ -150,6 +150,31 @@ static sq_status check_final_shapes(const sq_mesh *m, const sq_quad_mesh *Q, sq_
     return st;
 }
 
+/* mark grown by one ring of edge neighbours (grow: scratch of nv) */
+static void grow_ring(const sq_quad_star *S, uint32_t nv, uint8_t *mark, uint8_t *grow)
+{
+    memcpy(grow, mark, nv);
+    for (uint32_t v = 0; v < nv; v++)
+        if (mark[v])
+            for (uint32_t k = S->off[v]; k < S->off[v + 1]; k++) grow[S->next[k]] = 1;
+    memcpy(mark, grow, nv);
+}
+
+/* The quads turned over on m (Q located afresh into o), or if none, 1 if
+ * some quad is folded: 0 when Q has neither. */
+static sq_status count_turned_or_folded(const sq_mesh *m, const sq_quad_mesh *Q, on_surface *o, uint32_t *bad,
+                                        sq_error *err)
+{
+    on_surface_locate(o, Q);
+    sq_status st = sq_quad_mesh_count_turned(Q, m, o->vn, o->face, o->bary, bad, NULL, NULL, err);
+    for (uint32_t f = 0; !st && f < Q->nq && !*bad; f++) {
+        const uint32_t *q = Q->quad + 4 * (size_t)f;
+        *bad += sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1],
+                                    Q->pos + 3 * (size_t)q[2], Q->pos + 3 * (size_t)q[3]) < 0.0;
+    }
+    return st;
+}
+
 /* Where smoothing turned quads over: the vertices of those quads, then
  * also 1 to 16 rings around them, back at their unsmoothed places (keep),
  * until no quad is turned or folded. *turned: the turned quads left (0
@@ -180,23 +205,11 @@ static sq_status revert_turned(const sq_mesh *m, sq_quad_mesh *Q, const double *
                 for (int k = 0; k < 4; k++) mark[Q->quad[4 * (size_t)f + k]] = 1;
         uint32_t left = *turned;
         for (int ring = 0; ring <= 16 && left && !st; ring++) {
-            if (ring) {
-                memcpy(grow, mark, Q->nv);
-                for (uint32_t v = 0; v < Q->nv; v++)
-                    if (mark[v])
-                        for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++) grow[S.next[k]] = 1;
-                memcpy(mark, grow, Q->nv);
-            }
+            if (ring) grow_ring(&S, Q->nv, mark, grow);
             *kept = 0;
             for (uint32_t v = 0; v < Q->nv; v++)
                 if (mark[v]) memcpy(Q->pos + 3 * (size_t)v, keep + 3 * (size_t)v, 3 * sizeof *keep), ++*kept;
-            on_surface_locate(&o, Q);
-            if ((st = sq_quad_mesh_count_turned(Q, m, o.vn, o.face, o.bary, &left, NULL, NULL, err))) break;
-            for (uint32_t f = 0; f < Q->nq && !left; f++) {
-                const uint32_t *q = Q->quad + 4 * (size_t)f;
-                left += sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1],
-                                            Q->pos + 3 * (size_t)q[2], Q->pos + 3 * (size_t)q[3]) < 0.0;
-            }
+            st = count_turned_or_folded(m, Q, &o, &left, err);
         }
         if (!st && left) memcpy(Q->pos, smoothed, 3 * (size_t)Q->nv * sizeof *smoothed), *kept = 0;
         else if (!st) *turned = 0;
@@ -234,26 +247,13 @@ static sq_status revert_intersecting(const sq_mesh *m, sq_quad_mesh *Q, const do
         for (uint64_t k = 0; k < 2 * n; k++)
             for (int c = 0; c < 4; c++) mark[Q->quad[4 * (size_t)list[k] + c]] = 1;
         for (int ring = 0; ring <= 16 && *left && !st; ring++) {
-            if (ring) {
-                memcpy(grow, mark, Q->nv);
-                for (uint32_t v = 0; v < Q->nv; v++)
-                    if (mark[v])
-                        for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++) grow[S.next[k]] = 1;
-                memcpy(mark, grow, Q->nv);
-            }
+            if (ring) grow_ring(&S, Q->nv, mark, grow);
             *kept = 0;
             for (uint32_t v = 0; v < Q->nv; v++)
                 if (mark[v]) memcpy(Q->pos + 3 * (size_t)v, keep + 3 * (size_t)v, 3 * sizeof *keep), ++*kept;
-            if ((st = sq_remesh_quad_intersections(Q, left, NULL, 0, err))) break;
-            if (*left) continue;
+            if ((st = sq_remesh_quad_intersections(Q, left, NULL, 0, err)) || *left) continue;
             uint32_t bad = 0;
-            on_surface_locate(&o, Q);
-            if ((st = sq_quad_mesh_count_turned(Q, m, o.vn, o.face, o.bary, &bad, NULL, NULL, err))) break;
-            for (uint32_t f = 0; f < Q->nq && !bad; f++) {
-                const uint32_t *q = Q->quad + 4 * (size_t)f;
-                bad += sq_quad_fold_margin(Q->pos + 3 * (size_t)q[0], Q->pos + 3 * (size_t)q[1],
-                                           Q->pos + 3 * (size_t)q[2], Q->pos + 3 * (size_t)q[3]) < 0.0;
-            }
+            if ((st = count_turned_or_folded(m, Q, &o, &bad, err))) break;
             if (bad) *left = 1; /* not done: a wider ring */
         }
         if (!st && *left) memcpy(Q->pos, start, 3 * (size_t)Q->nv * sizeof *start), *kept = 0;
