@@ -18,6 +18,8 @@
 # SQ_BENCH_MAP=param: the maps are `seamquad param`'s for the same cones
 # (made once per model, default options), not the published ones; the
 # QuadriFlow columns are left out.
+# SQ_BENCH_QUANTIZE_ARGS: more options for quantize (e.g. "--prepare on");
+# SQ_BENCH_MODELS: the models to run (default: all 15).
 set -u
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${SQ_BIN:-$root/build/bin/seamquad}
@@ -55,7 +57,7 @@ PY
 echo "| model | target | quads (fewest) | valid | mean abs(angle-90) | min sJ | dist | quantize s | extract s | QuadriFlow quads | valid | mean abs(angle-90) | min sJ | dist | s |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for n in "${targets[@]}"; do
-  for m in block cup eight elk fandisk femur fertility_tri genus3 helmet holes3 homer knot1 rocker_arm sculpt trim-star; do
+  for m in ${SQ_BENCH_MODELS:-block cup eight elk fandisk femur fertility_tri genus3 helmet holes3 homer knot1 rocker_arm sculpt trim-star}; do
     mesh=$data/$m.obj
     cones=$data/${m}_Th_hat
     row="| $m | $n |"
@@ -67,7 +69,8 @@ for n in "${targets[@]}"; do
         continue
       fi
     fi
-    if "$bin" quantize "$mesh" --map "$map" --cones "$cones" --quads "$n" -o "$tmp/igm.obj" --json \
+    # shellcheck disable=SC2086
+    if "$bin" quantize "$mesh" --map "$map" --cones "$cones" --quads "$n" -o "$tmp/igm.obj" --json ${SQ_BENCH_QUANTIZE_ARGS:-} \
         >"$tmp/q.json" 2>"$tmp/err" &&
       "$bin" extract "$mesh" "$tmp/igm.obj" -o "$tmp/quads.obj" --json >"$tmp/x.json" 2>>"$tmp/err"; then
       read -r quads least tq tx < <(python3 -c "

@@ -19,6 +19,7 @@ static void help(FILE *f)
     fprintf(f,
             "usage: seamquad quantize MESH --map MAP.obj (--quads N | --edge-length L)\n"
             "                         -o IGM.obj [--cones FILE] [--targets surface|map]\n"
+            "                         [--prepare on|off] [--prepare-iterations N]\n"
             "                         [--optimize on|off] [--svg TMESH.svg] [--json] [--quiet]\n"
             "\n"
             "Turns a seamless map of the closed triangle mesh MESH into an integer-grid\n"
@@ -34,7 +35,11 @@ static void help(FILE *f)
             "a folded or broken map is refused with the face or seam named, never\n"
             "repaired.\n"
             "\n"
-            "Steps: (1) the T-mesh: from every cone the iso-lines along the axes are\n"
+            "Steps: (0) the map's distortion is lowered first, its rotations and cones\n"
+            "kept, its translations free (as `seamquad optimize` does; up to a few\n"
+            "seconds on published maps, minutes on param's largest): quantization\n"
+            "follows the map's shape, and quads made from a very distorted map (as\n"
+            "param's are) come out skewed, folded or upside down; (1) the T-mesh: from every cone the iso-lines along the axes are\n"
             "traced, exactly, until they meet a cone or another trace (the motorcycle\n"
             "graph of Quantized Global Parametrization); they cut the surface into\n"
             "rectangles; (2) the map's triangles are split along the traces; (3) every\n"
@@ -64,6 +69,10 @@ static void help(FILE *f)
             "  --targets KIND       arc lengths aimed at from their length on the\n"
             "                       surface (surface) or in the map (map, the default:\n"
             "                       the map's own proportions, least re-embedding)\n"
+            "  --prepare on|off     step (0) (default on; off: the map as it is, the fast\n"
+            "                       path for maps already close to conformal)\n"
+            "  --prepare-iterations N\n"
+            "                       step (0)'s budget of Newton steps (default 600)\n"
             "  --optimize on|off    step (5) (default on; off: the re-embedded map as is)\n"
             "  --svg TMESH.svg      the traces over the UV layout (cones red,\n"
             "                       T-junctions blue)\n"
@@ -81,13 +90,21 @@ static void help(FILE *f)
             "  seamquad extract ../shared/data/mpz/eight.obj eight.igm.obj -o eight.quads.obj\n");
 }
 
+static void progress(void *user, uint32_t it, double energy, double step)
+{
+    (void)user;
+    fprintf(stderr, "  prepare: iteration %3u  energy %.6g  step %.3g\n", it, energy, step);
+}
+
 typedef struct report {
     const char *mesh_path, *map_path, *out_path, *cones_path, *svg_path;
     double quads, edge_length;
-    int targets, optimize;
+    int targets, optimize, prepare, prepared;
+    uint32_t prepare_iterations;
     uint32_t nv, nf, map_nv, map_nf, igm_nv, igm_nf;
     int64_t genus;
     sq_map_report map;
+    sq_quantize_prepare_report pre;
     sq_quantize_stats st;
     double t_read, t_map, t_write, t_total;
     int done;
@@ -106,6 +123,14 @@ static void print_text(const report *r)
                r->map.max_seam_error, r->map.moved_uv, r->map.grid);
     else
         printf("made exact    already exact\n");
+    if (r->prepared) {
+        const sq_optimize_report *o = &r->pre.optimize;
+        printf("prepared      mean conformal ratio %.4g -> %.4g (symmetric Dirichlet %.4g -> %.4g), %u "
+               "iterations%s, %.3f s: %s\n",
+               r->pre.conformal_before, r->pre.conformal_after, o->energy_before, o->energy_after,
+               o->iterations, o->fixed_rounds ? " (rounds with the transitions fixed where free was not exact)" : "",
+               o->seconds, o->why);
+    }
     printf("T-mesh        %u nodes, %u arcs, %u rectangles\n", s->nodes, s->arcs, s->faces);
     printf("split         %u vertices, %u triangles\n", s->split_vertices, s->split_triangles);
     if (r->quads > 0) {
@@ -128,9 +153,9 @@ static void print_text(const report *r)
                r->st.optimize.max_energy_after, r->st.optimize.iterations, r->st.optimize.seconds, r->st.optimize.why);
     printf("verified      every UV triangle positive (exact); every seam a rotation by k*90\n"
            "              degrees plus an integer translation, exactly; cones on integer points\n");
-    printf("time          read %.3f s, map %.3f s, T-mesh %.3f s, split %.3f s, layout %.3f s, "
+    printf("time          read %.3f s, map %.3f s, prepare %.3f s, T-mesh %.3f s, split %.3f s, layout %.3f s, "
            "lengths %.3f s, embed %.3f s, write %.3f s; total %.3f s\n",
-           r->t_read, r->t_map, s->seconds_tmesh, s->seconds_split, s->seconds_layout,
+           r->t_read, r->t_map, r->pre.optimize.seconds, s->seconds_tmesh, s->seconds_split, s->seconds_layout,
            s->seconds_lengths, s->seconds_embed, r->t_write, r->t_total);
     printf("wrote         %s (%u vertices, %u faces)%s%s\n", r->out_path, r->igm_nv, r->igm_nf,
            r->svg_path ? ", " : "", r->svg_path ? r->svg_path : "");
@@ -149,6 +174,21 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
                "\"cones\": %u, \"seam_error\": %.3g, \"grid\": %.17g, \"moved_uv\": %u",
                r->map_nv, r->map_nf, r->map.seam_edges, r->map.seam_curves, r->map.cones,
                r->map.max_seam_error, r->map.grid, r->map.moved_uv);
+    if (r->prepared) {
+        const sq_optimize_report *o = &r->pre.optimize;
+        printf(",\n  \"prepare\": {\"conformal_before\": ");
+        sq_json_double(stdout, r->pre.conformal_before);
+        printf(", \"conformal_after\": ");
+        sq_json_double(stdout, r->pre.conformal_after);
+        printf(", \"energy_before\": ");
+        sq_json_double(stdout, o->energy_before);
+        printf(", \"energy_after\": ");
+        sq_json_double(stdout, o->energy_after);
+        printf(", \"iterations\": %u, \"rounds\": %u, \"fixed_rounds\": %u, \"stopped\": ", o->iterations,
+               o->rounds, o->fixed_rounds);
+        sq_json_string(stdout, o->why);
+        printf("}");
+    }
     if (r->done)
         printf(",\n  \"tmesh\": {\"nodes\": %u, \"arcs\": %u, \"faces\": %u},\n  \"split_vertices\": %u, "
                "\"split_triangles\": %u, \"fallback_faces\": %u, \"refined_faces\": %u, \"refine_rounds\": %u,\n  "
@@ -169,10 +209,10 @@ static void print_json(const report *r, sq_status st, const char *stage, const c
         sq_json_string(stdout, r->st.optimize.why);
         printf("}");
     }
-    printf(",\n  \"time_s\": {\"read\": %.6f, \"map\": %.6f, \"tmesh\": %.6f, \"split\": %.6f, "
+    printf(",\n  \"time_s\": {\"read\": %.6f, \"map\": %.6f, \"prepare\": %.6f, \"tmesh\": %.6f, \"split\": %.6f, "
            "\"layout\": %.6f, \"lengths\": %.6f, \"embed\": %.6f, \"write\": %.6f, \"total\": %.6f}",
-           r->t_read, r->t_map, s->seconds_tmesh, s->seconds_split, s->seconds_layout,
-           s->seconds_lengths, s->seconds_embed, r->t_write, r->t_total);
+           r->t_read, r->t_map, r->pre.optimize.seconds, s->seconds_tmesh, s->seconds_split,
+           s->seconds_layout, s->seconds_lengths, s->seconds_embed, r->t_write, r->t_total);
     if (st != SQ_OK) {
         printf(",\n  ");
         sq_json_error(st, stage, msg);
@@ -186,6 +226,7 @@ int sq_cmd_quantize(int argc, char **argv)
     memset(&r, 0, sizeof r);
     r.targets = SQ_TARGETS_MAP;
     r.optimize = 1;
+    r.prepare = 1;
     int json = 0, quiet = 0, have_quads = 0, have_len = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -198,7 +239,8 @@ int sq_cmd_quantize(int argc, char **argv)
             quiet = 1;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones") ||
                    !strcmp(a, "--map") || !strcmp(a, "--svg") || !strcmp(a, "--quads") ||
-                   !strcmp(a, "--edge-length") || !strcmp(a, "--targets") || !strcmp(a, "--optimize")) {
+                   !strcmp(a, "--edge-length") || !strcmp(a, "--targets") || !strcmp(a, "--optimize") ||
+                   !strcmp(a, "--prepare") || !strcmp(a, "--prepare-iterations")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "seamquad quantize: %s needs a value\n", a);
                 return SQ_EXIT_USAGE;
@@ -220,6 +262,21 @@ int sq_cmd_quantize(int argc, char **argv)
                     fprintf(stderr, "seamquad quantize: --optimize is on or off, not '%s'\n", v);
                     return SQ_EXIT_USAGE;
                 }
+            } else if (!strcmp(a, "--prepare")) {
+                if (!strcmp(v, "on")) r.prepare = 1;
+                else if (!strcmp(v, "off")) r.prepare = 0;
+                else {
+                    fprintf(stderr, "seamquad quantize: --prepare is on or off, not '%s'\n", v);
+                    return SQ_EXIT_USAGE;
+                }
+            } else if (!strcmp(a, "--prepare-iterations")) {
+                double n;
+                if (!sq_cli_number_option("quantize", a, v, &n)) return SQ_EXIT_USAGE;
+                if (!(n >= 1 && n <= 1e6 && n == floor(n))) {
+                    fprintf(stderr, "seamquad quantize: --prepare-iterations %s: a whole number from 1 to 1e6\n", v);
+                    return SQ_EXIT_USAGE;
+                }
+                r.prepare_iterations = (uint32_t)n;
             } else if (!strcmp(a, "--targets")) {
                 if (!strcmp(v, "surface")) r.targets = SQ_TARGETS_SURFACE;
                 else if (!strcmp(v, "map")) r.targets = SQ_TARGETS_MAP;
@@ -295,8 +352,15 @@ int sq_cmd_quantize(int argc, char **argv)
         r.t_map = sq_now() - t1;
         if (st) sq_cli_name_file(&err, r.map_path);
     }
+    if (!st) r.map_nv = M.mesh.nv, r.map_nf = M.mesh.nf;
+    if (!st && r.prepare) {
+        stage = "prepare";
+        sq_quantize_prepare_options po = {r.prepare_iterations, NULL, NULL};
+        if (!quiet && !json) po.progress = progress;
+        st = sq_quantize_prepare(&M, &po, &r.pre, &err);
+        r.prepared = !st;
+    }
     if (!st) {
-        r.map_nv = M.mesh.nv, r.map_nf = M.mesh.nf;
         stage = "quantize";
         sq_quantize_options opt = {have_quads ? r.quads : 0, have_len ? r.edge_length : 0, r.targets,
                                    r.optimize};

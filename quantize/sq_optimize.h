@@ -87,8 +87,10 @@ typedef struct sq_optimize_report {
     double relax_stretch_before; /* the largest stretch max(s1, 1/s2) of a triangle  */
     double relax_stretch_after;  /* before and after step 0                          */
     int changed;              /* 1 if M was changed (step 0 or the iterations)       */
-    int iterate_kept;         /* 1 if the iterations' last map is M (it passed the   */
-                              /* exact check and lowered the energy)                 */
+    int iterate_kept;         /* 1 if the iterations' (last round's) map is M: it    */
+                              /* passed the exact check and lowered the energy       */
+    uint32_t rounds;          /* sq_optimize_map_free_or_fixed: the runs made, and   */
+    uint32_t fixed_rounds;    /* of them those with the transitions fixed            */
     char why[160];            /* why the optimization stopped, or was not applied    */
     double seconds_basis, seconds_solve, seconds;
 } sq_optimize_report;
@@ -101,9 +103,22 @@ typedef struct sq_optimize_report {
 sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize_report *rep,
                           sq_error *err);
 
+/* sq_optimize_map with free translations (opt->basis must be
+ * SQ_OPTIMIZE_FREE_TRANSLATIONS) for opt->max_iterations; where its result
+ * cannot be made exact (the iterations are discarded), rounds with the
+ * transitions fixed and free again (sq_optimize_free.c). rep sums the
+ * rounds: iterations kept, step 0's moves; energies (sq_optimize_energy)
+ * and worst stretch before the first and after the last; `why` the last
+ * round's. */
+sq_status sq_optimize_map_free_or_fixed(sq_map *M, const sq_optimize_options *opt, sq_optimize_report *rep,
+                                        sq_error *err);
 /* The energy of M without optimizing it: mean and max (either may be
  * NULL). Triangles of zero area on the surface are left out. */
 void sq_optimize_energy(const sq_map *M, double *mean, double *max);
+/* The area-weighted mean conformal ratio sigma1/sigma2 of M (the referee's
+ * figure; triangles of zero area on the surface, or not positive in the
+ * map, left out; INFINITY if none is left). */
+double sq_map_conformal_mean(const sq_map *M);
 
 #ifdef __cplusplus
 }

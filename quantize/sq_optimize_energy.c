@@ -1,5 +1,6 @@
 /* seamquad: the symmetric Dirichlet energy of one triangle, its gradient
- * and its Hessian made positive semidefinite (sq_optimize_internal.h).
+ * and its Hessian made positive semidefinite (sq_optimize_internal.h); the
+ * mean conformal ratio of a map (sq_optimize.h).
  *
  * A triangle with corners p0, p1, p2 on the surface gets a 2D frame:
  * x1 = (|e1|, 0), x2 = (e1.e2 / |e1|, |e1 x e2| / |e1|), e_i = p_i - p0.
@@ -20,6 +21,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "sq_optimize.h"
 #include "sq_optimize_internal.h"
 
 int sq_sd_prepare(const double *p0, const double *p1, const double *p2, double scale,
@@ -232,4 +234,39 @@ double sq_sd_log_stretch(const sq_sd_face *F, const double uv[6])
     double s2 = det / s1;
     if (!(s2 > 0)) return 1000.0;
     return fmax(log(s1), -log(s2));
+}
+
+double sq_map_conformal_mean(const sq_map *M)
+{
+    const sq_mesh *m = &M->mesh;
+    double sum = 0, area = 0;
+    for (uint32_t f = 0; f < m->nf; f++) {
+        uint32_t h[3] = {m->f_he[f], 0, 0};
+        h[1] = m->he_next[h[0]];
+        h[2] = m->he_next[h[1]];
+        const double *p0 = m->pos + 3 * (size_t)m->he_vert[h[0]];
+        const double *p1 = m->pos + 3 * (size_t)m->he_vert[h[1]];
+        const double *p2 = m->pos + 3 * (size_t)m->he_vert[h[2]];
+        double e1[3], e2[3];
+        for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+               cz = e1[0] * e2[1] - e1[1] * e2[0];
+        double a2 = sqrt(cx * cx + cy * cy + cz * cz), l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+        if (!(a2 > 0) || !(l1 > 0)) continue;
+        /* the surface triangle in a 2D frame: x1 = (l1, 0), x2 = (a, b) */
+        double a = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1, b = a2 / l1;
+        const double *u0 = M->he_uv + 2 * (size_t)h[0], *u1 = M->he_uv + 2 * (size_t)h[1],
+                     *u2 = M->he_uv + 2 * (size_t)h[2];
+        double du1[2] = {u1[0] - u0[0], u1[1] - u0[1]}, du2[2] = {u2[0] - u0[0], u2[1] - u0[1]};
+        /* J = [du1 du2] X^-1, X = [[l1, a], [0, b]] */
+        double J00 = du1[0] / l1, J10 = du1[1] / l1;
+        double J01 = (du2[0] - a * J00) / b, J11 = (du2[1] - a * J10) / b;
+        double fro = J00 * J00 + J01 * J01 + J10 * J10 + J11 * J11, det = J00 * J11 - J01 * J10;
+        if (!(det > 0)) continue;
+        double d = sqrt(fmax(fro * fro - 4 * det * det, 0.0));
+        double s1 = sqrt(0.5 * (fro + d)), s2 = det / s1;
+        sum += 0.5 * a2 * (s1 / s2);
+        area += 0.5 * a2;
+    }
+    return area > 0 ? sum / area : INFINITY;
 }

@@ -2,6 +2,9 @@
  * user's scale (docs/quantize.md).
  *
  * Steps, each its own file:
+ *  0. before the rest, a call of its own (sq_quantize_prepare): the map's
+ *     distortion lowered, its rotations and cones kept, its translations
+ *     free (sq_optimize.h), so that quantization has a map it can follow;
  *  1. the T-mesh (sq_tmesh.h): separatrices traced from the cones, exactly;
  *  2. the map's triangles split along them (sq_map_split.h), and the
  *     T-mesh's rectangles, arcs and sides read off the split
@@ -64,6 +67,25 @@ typedef struct sq_quantize_stats {
     double seconds;
 } sq_quantize_stats;
 
+/* Step 0 (sq_quantize_prepare.c). */
+#define SQ_QUANTIZE_PREPARE_ITERATIONS 600u
+typedef struct sq_quantize_prepare_options {
+    uint32_t iterations; /* the budget of Newton steps; 0:                     */
+                         /* SQ_QUANTIZE_PREPARE_ITERATIONS                     */
+    /* called after every iteration (may be NULL): a progress hook */
+    void (*progress)(void *user, uint32_t iteration, double energy, double step);
+    void *user;
+} sq_quantize_prepare_options;
+typedef struct sq_quantize_prepare_report {
+    double conformal_before;   /* sq_map_conformal_mean before and after     */
+    double conformal_after;
+    sq_optimize_report optimize; /* sq_optimize_map_free_or_fixed's report   */
+} sq_quantize_prepare_report;
+/* Lowers the distortion of the exact map M in place before sq_quantize
+ * (sq_optimize_map_free_or_fixed; opt may be NULL: the defaults). M stays exact (sq_map_check passes), with the same mesh,
+ * rotations and cones. rep may be NULL. */
+sq_status sq_quantize_prepare(sq_map *M, const sq_quantize_prepare_options *opt,
+                              sq_quantize_prepare_report *rep, sq_error *err);
 /* The integer-grid map of the exact map M (sq_map_check passes) at the
  * requested size, from its cones' separatrices. *igm is a refinement of M
  * (its first vertices are M's). stats may be NULL. */

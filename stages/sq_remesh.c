@@ -419,15 +419,16 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     oo.user = &pc;
     if (stats->from_map) {
         sq_remesh_optimize_report *rep = &stats->optimize;
-        rep->conformal_before = sq_remesh_conformal_mean(&M);
+        rep->conformal_before = sq_map_conformal_mean(&M);
         rep->faces_before = rep->faces_after = M.mesh.nf;
         oo.max_iterations = pc.iterations;
         sq_optimize_report r;
-        st = sq_optimize_map(&M, &oo, &r, err);
+        st = sq_optimize_map_free_or_fixed(&M, &oo, &r, err);
         rep->iterations = r.iterations;
+        rep->fixed_rounds = r.fixed_rounds;
         rep->reference_iterations = r.reference_iterations;
         memcpy(rep->why, r.why, sizeof rep->why);
-        rep->conformal_after = sq_remesh_conformal_mean(&M);
+        rep->conformal_after = sq_map_conformal_mean(&M);
     } else {
         st = sq_remesh_optimize(m, out->valence, &P, &oo, pc.iterations, &M, &stats->optimize, err);
     }

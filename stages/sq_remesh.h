@@ -183,10 +183,6 @@ sq_status sq_remesh_quad_intersections(const sq_quad_mesh *Q, uint64_t *pairs, u
 sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint64_t *pairs, uint32_t *rounds,
                                          sq_error *err);
 
-/* The area-weighted mean conformal ratio sigma1/sigma2 of a map (the
- * referee's figure; triangles of zero area on the surface left out). */
-double sq_remesh_conformal_mean(const sq_map *M);
-
 #ifdef __cplusplus
 }
 #endif

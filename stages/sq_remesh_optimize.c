@@ -63,7 +63,7 @@ sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param 
     memset(M, 0, sizeof *M);
     sq_status st = sq_remesh_param_map(P, m, valence, M, err);
     if (st) return st;
-    rep->conformal_before = sq_remesh_conformal_mean(M);
+    rep->conformal_before = sq_map_conformal_mean(M);
     rep->faces_before = M->mesh.nf;
     while (rep->iterations < budget) {
         sq_optimize_options o = *base;
@@ -73,16 +73,10 @@ sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param 
         o.max_iterations = left > ROUND_ITERATIONS ? ROUND_ITERATIONS : left;
         o.keep_last = 1; /* a round may raise the surface energy on the way */
         sq_optimize_report r;
-        if ((st = sq_optimize_map(M, &o, &r, err))) return st;
-        if (!r.iterate_kept && o.basis == SQ_OPTIMIZE_FREE_TRANSLATIONS) {
-            /* With free translations the result is snapped to a dyadic
-             * grid, which flips triangles far below it (param's rectangles'
-             * maps have them); with the translations fixed every iterate is
-             * exact as it is, so the round is run that way instead. */
-            o.basis = SQ_OPTIMIZE_FIXED_TRANSITIONS;
-            if ((st = sq_optimize_map(M, &o, &r, err))) return st;
-            rep->fixed_rounds++;
-        }
+        /* a round whose snapped result (free translations) fails the exact
+         * check is run with the translations fixed */
+        if ((st = sq_optimize_map_free_or_fixed(M, &o, &r, err))) return st;
+        rep->fixed_rounds += r.fixed_rounds;
         rep->iterations += r.iterations;
         rep->reference_iterations += r.reference_iterations;
         memcpy(rep->why, r.why, sizeof rep->why);
@@ -99,6 +93,6 @@ sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param 
         }
     }
     rep->faces_after = M->mesh.nf;
-    rep->conformal_after = sq_remesh_conformal_mean(M);
+    rep->conformal_after = sq_map_conformal_mean(M);
     return SQ_OK;
 }

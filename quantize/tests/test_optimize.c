@@ -29,7 +29,14 @@
  *  - step 0, the relaxation, on param's map of fandisk: its thinnest
  *    triangle (1e-93 of its longest side squared) widens by more than 50
  *    orders of magnitude, with the transitions and the cones' corners bit
- *    for bit. */
+ *    for bit;
+ *  - quantization's step 0 (sq_quantize_prepare, through
+ *    sq_optimize_map_free_or_fixed): the published map of knot1 (mean
+ *    conformal ratio 1.32) and param's (559) both come out exact, with the
+ *    same rotations and cones, param's below the published map's ratio;
+ *    param's, quantized at 20K quads, extracts into a quad mesh with no
+ *    quad folded or turned over after untangling (param's map as it is
+ *    leaves one upside down). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -667,6 +674,81 @@ static void test_relax_param(void **state)
     unload(&md);
 }
 
+/* the quad mesh of M at `quads`: its quads still folded or turned over
+ * after untangling */
+static uint32_t bad_quads_after_untangling(const sq_map *M, double quads)
+{
+    sq_quantize_options qo = {quads, 0, SQ_TARGETS_MAP, 1};
+    sq_map igm;
+    sq_quad_mesh Q;
+    sq_untangle_stats us;
+    sq_error err;
+    if (sq_quantize(M, &qo, &igm, NULL, &err)) fail_msg("quantize: %s", err.msg);
+    if (sq_extract(&igm, &Q, NULL, &err)) fail_msg("extract: %s", err.msg);
+    if (sq_extract_untangle(&igm, &Q, &us, &err)) fail_msg("untangle: %s", err.msg);
+    sq_quad_mesh_free(&Q);
+    sq_map_free(&igm);
+    return us.folded_after;
+}
+
+/* M prepared (sq_quantize_prepare): exact, the same rotations and cones,
+ * a lower mean conformal ratio; returns that ratio */
+static double prepared(const char *what, sq_map *M)
+{
+    sq_error err;
+    uint8_t *rot = malloc(M->mesh.nh);
+    int32_t *val = malloc(M->mesh.nv * sizeof *val);
+    assert_non_null(rot);
+    assert_non_null(val);
+    memcpy(rot, M->he_rot, M->mesh.nh);
+    memcpy(val, M->valence, M->mesh.nv * sizeof *val);
+    sq_quantize_prepare_report pr;
+    if (sq_quantize_prepare(M, NULL, &pr, &err)) fail_msg("%s: %s", what, err.msg);
+    print_message("%s: mean conformal ratio %.4g -> %.4g, %u iterations in %u runs (%u with fixed "
+                  "transitions): %s\n",
+                  what, pr.conformal_before, pr.conformal_after, pr.optimize.iterations, pr.optimize.rounds,
+                  pr.optimize.fixed_rounds, pr.optimize.why);
+    assert_true(pr.conformal_after < pr.conformal_before);
+    assert_true(pr.conformal_after == sq_map_conformal_mean(M));
+    if (sq_map_check(M, 0, &err)) fail_msg("%s: %s", what, err.msg);
+    assert_memory_equal(rot, M->he_rot, M->mesh.nh);
+    assert_memory_equal(val, M->valence, M->mesh.nv * sizeof *val);
+    free(rot);
+    free(val);
+    return pr.conformal_after;
+}
+
+static void test_quantize_prepare(void **state)
+{
+    (void)state;
+    model md;
+    sq_error err;
+    load("knot1", &md);
+    sq_map pub;
+    if (sq_map_from_soup(&md.soup, &md.mesh, md.valence, 1e-9, 0, &pub, NULL, &err)) fail_msg("%s", err.msg);
+    double published = sq_map_conformal_mean(&pub);
+    assert_true(published > 1.3 && published < 1.35);
+    prepared("knot1 published", &pub);
+    sq_map_free(&pub);
+    /* param's map */
+    char path[256];
+    write_param_map(&md, "q", path, sizeof path);
+    sq_map M, raw;
+    if (sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, &M, NULL, &err) ||
+        sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, &raw, NULL, &err))
+        fail_msg("param map read back: %s", err.msg);
+    unlink(path);
+    assert_true(sq_map_conformal_mean(&M) > 100);
+    assert_true(prepared("knot1 param", &M) < published);
+    uint32_t bad_raw = bad_quads_after_untangling(&raw, 20000), bad = bad_quads_after_untangling(&M, 20000);
+    print_message("knot1 param at 20K quads: %u quads folded or turned over after untangling from the map as "
+                  "it is, %u from the prepared map\n", bad_raw, bad);
+    assert_int_equal(bad, 0);
+    sq_map_free(&M);
+    sq_map_free(&raw);
+    unload(&md);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -676,6 +758,7 @@ int main(void)
         cmocka_unit_test(test_param_igm),        cmocka_unit_test(test_reference),
         cmocka_unit_test(test_hessian_projection),
         cmocka_unit_test(test_progressive_param), cmocka_unit_test(test_relax_param),
+        cmocka_unit_test(test_quantize_prepare),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

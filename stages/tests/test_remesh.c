@@ -168,10 +168,10 @@ static void test_eight_kept_maps(void **state)
     /* eight's rotations allow a good map: the measured 27.7 -> 1.23 */
     print_message("eight: conformal %.4g -> %.4g (%.4g recomputed), faces %u -> %u in %u rounds\n",
                   st.optimize.conformal_before, st.optimize.conformal_after,
-                  sq_remesh_conformal_mean(&R.optimized), st.optimize.faces_before, st.optimize.faces_after,
+                  sq_map_conformal_mean(&R.optimized), st.optimize.faces_before, st.optimize.faces_after,
                   st.optimize.rounds);
     assert_true(st.optimize.conformal_before > 10 && st.optimize.conformal_after < 1.5);
-    assert_true(fabs(sq_remesh_conformal_mean(&R.optimized) - st.optimize.conformal_after) < 1e-12);
+    assert_true(fabs(sq_map_conformal_mean(&R.optimized) - st.optimize.conformal_after) < 1e-12);
     /* the rounds' simplification: fewer faces, param's map kept as it was */
     assert_true(st.optimize.rounds >= 1 && st.optimize.removed > 0);
     assert_int_equal(st.optimize.faces_after, R.optimized.mesh.nf);
