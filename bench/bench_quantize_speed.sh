@@ -6,8 +6,9 @@
 #
 #   bench/bench_quantize_speed.sh [REPS]      (default 3)
 #
-# For each input, quantize with step 5 (the default) and without it
-# (--optimize off), then extract; the best of REPS runs of each command's
+# For each input, quantize with steps 0 and 5 (the optimizations before and
+# after quantization, the default) and without them (--prepare off
+# --optimize off: the fast path), then extract; the best of REPS runs of each command's
 # own --json total (wall seconds), the quads, and the referee's verdict and
 # mean |angle - 90| (check_quad.py --cones on the last run). SQ_BIN selects
 # the binary.
@@ -22,7 +23,7 @@ trap 'rm -rf "$tmp"' EXIT
 best() { python3 -c "import sys; print('%.3f' % min(float(x) for x in sys.argv[1:]))" "$@"; }
 total() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['time_s']['total'])" "$1"; }
 
-echo "| input | faces | step 5 | quads | valid | mean abs(angle-90) | quantize s | extract s | total s |"
+echo "| input | faces | steps 0 and 5 | quads | valid | mean abs(angle-90) | quantize s | extract s | total s |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for m in genus3 holes3; do
   python3 "$root/bench/subdivide_map.py" "$shared/data/mpz/$m.obj" "$tmp/$m.obj" || exit 1
@@ -38,7 +39,7 @@ open(sys.argv[3], 'w').write('\n'.join(th) + '\n')" "$shared/data/mpz/${m}_Th_ha
     tq=() tx=()
     for ((r = 0; r < reps; r++)); do
       "$bin" quantize "$tmp/$m.obj" --map "$tmp/$m.obj" --cones "$tmp/$m.cones" --quads 5000 \
-        --optimize $opt -o "$tmp/igm.obj" --json >"$tmp/q.json" || exit 1
+        --prepare $opt --optimize $opt -o "$tmp/igm.obj" --json >"$tmp/q.json" || exit 1
       "$bin" extract "$tmp/$m.obj" "$tmp/igm.obj" -o "$tmp/quads.obj" --json >"$tmp/x.json" || exit 1
       tq+=("$(total "$tmp/q.json")") tx+=("$(total "$tmp/x.json")")
     done
