@@ -30,6 +30,11 @@
  *    triangle (1e-93 of its longest side squared) widens by more than 50
  *    orders of magnitude, with the transitions and the cones' corners bit
  *    for bit;
+ *  - free translations where the snapped result is refused
+ *    (sq_optimize_map_free_or_fixed): on param's map of fandisk, 12
+ *    iterations include a round with the transitions fixed; the map is
+ *    exact, with the same rotations and cones, and its mean conformal ratio
+ *    lower;
  *  - quantization's step 0 (sq_quantize_prepare, through
  *    sq_optimize_map_free_or_fixed): the published map of knot1 (mean
  *    conformal ratio 1.32) and param's (559) both come out exact, with the
@@ -674,6 +679,43 @@ static void test_relax_param(void **state)
     unload(&md);
 }
 
+static void test_free_or_fixed(void **state)
+{
+    (void)state;
+    model md;
+    sq_error err;
+    load("fandisk", &md);
+    char path[256];
+    write_param_map(&md, "f", path, sizeof path);
+    sq_map M;
+    if (sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, &M, NULL, &err))
+        fail_msg("param map read back: %s", err.msg);
+    unlink(path);
+    uint8_t *rot = malloc(M.mesh.nh);
+    assert_non_null(rot);
+    memcpy(rot, M.he_rot, M.mesh.nh);
+    double before = sq_map_conformal_mean(&M);
+    sq_optimize_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.basis = SQ_OPTIMIZE_FREE_TRANSLATIONS;
+    opt.max_iterations = 12;
+    sq_optimize_report rep;
+    if (sq_optimize_map_free_or_fixed(&M, &opt, &rep, &err)) fail_msg("%s", err.msg);
+    double after = sq_map_conformal_mean(&M);
+    print_message("fandisk param, free or fixed: mean conformal ratio %.4g -> %.4g, %u iterations in %u runs "
+                  "(%u with fixed transitions): %s\n",
+                  before, after, rep.iterations, rep.rounds, rep.fixed_rounds, rep.why);
+    assert_true(rep.fixed_rounds >= 1 && rep.rounds > rep.fixed_rounds && rep.changed);
+    assert_true(rep.iterations > 0 && rep.iterations <= 12);
+    assert_true(after < before);
+    if (sq_map_check(&M, 0, &err)) fail_msg("%s", err.msg);
+    assert_memory_equal(rot, M.he_rot, M.mesh.nh);
+    for (uint32_t v = 0; v < md.mesh.nv; v++) assert_int_equal(M.valence[v], md.valence[v]);
+    free(rot);
+    sq_map_free(&M);
+    unload(&md);
+}
+
 /* the quad mesh of M at `quads`: its quads still folded or turned over
  * after untangling */
 static uint32_t bad_quads_after_untangling(const sq_map *M, double quads)
@@ -758,7 +800,7 @@ int main(void)
         cmocka_unit_test(test_param_igm),        cmocka_unit_test(test_reference),
         cmocka_unit_test(test_hessian_projection),
         cmocka_unit_test(test_progressive_param), cmocka_unit_test(test_relax_param),
-        cmocka_unit_test(test_quantize_prepare),
+        cmocka_unit_test(test_free_or_fixed),    cmocka_unit_test(test_quantize_prepare),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
