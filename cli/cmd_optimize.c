@@ -33,8 +33,10 @@ static void help(FILE *f)
             "Each projected Newton step is cut to the largest that keeps every triangle\n"
             "positive, shortened until the energy falls, and accepted only if the exact\n"
             "orientation test passes. The result is made exact on a dyadic grid and\n"
-            "checked; if it cannot improve the map, OUT.obj is the input map and the\n"
-            "report says why.\n"
+            "checked; where that fails (free translations on a map with triangles far\n"
+            "thinner than the grid, as param's maps have), rounds with the transitions\n"
+            "fixed widen them and the free rounds resume. If it cannot improve the\n"
+            "map, OUT.obj is the input map and the report says why.\n"
             "\n"
             "options:\n"
             "  --map MAP.obj        the seamless map (OBJ with f v/vt corners), of MESH or\n"
@@ -185,7 +187,10 @@ int sq_cmd_optimize(int argc, char **argv)
     t_read = sq_now() - t0;
     if (!st) {
         stage = "optimize";
-        st = sq_optimize_map(&M, &opt, &rep, &err);
+        /* free translations: where the snapped result cannot be made
+         * exact, rounds with the transitions fixed (sq_optimize_free.c) */
+        st = opt.basis == SQ_OPTIMIZE_FREE_TRANSLATIONS ? sq_optimize_map_free_or_fixed(&M, &opt, &rep, &err)
+                                                        : sq_optimize_map(&M, &opt, &rep, &err);
     }
     if (!st) {
         stage = "write";
@@ -218,6 +223,7 @@ int sq_cmd_optimize(int argc, char **argv)
             printf(", \"stretch_after\": ");
             sq_json_double(stdout, rep.relax_stretch_after);
             printf("}");
+            printf(",\n  \"rounds\": %u, \"fixed_rounds\": %u", rep.rounds, rep.fixed_rounds);
             printf(",\n  \"stopped\": ");
             sq_json_string(stdout, rep.why);
         }
@@ -237,6 +243,10 @@ int sq_cmd_optimize(int argc, char **argv)
         printf("optimizer     %u unknowns (translations %s), %u iterations: %s%s\n", rep.unknowns,
                opt.basis == SQ_OPTIMIZE_FIXED_TRANSITIONS ? "fixed" : "free", rep.iterations, rep.why,
                rep.changed ? "" : "; the map is unchanged");
+        if (rep.fixed_rounds)
+            printf("rounds        %u, %u of them with the transitions fixed (the free result could not be\n"
+                   "              made exact: triangles far thinner than its grid)\n",
+                   rep.rounds, rep.fixed_rounds);
         if (rep.relax_moves)
             printf("relaxed       %u local moves; worst triangle stretch %.3g -> %.3g\n", rep.relax_moves,
                    rep.relax_stretch_before, rep.relax_stretch_after);

@@ -107,9 +107,9 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
  * SQ_OPTIMIZE_FREE_TRANSLATIONS) for opt->max_iterations; where its result
  * cannot be made exact (the iterations are discarded), rounds with the
  * transitions fixed and free again (sq_optimize_free.c). rep sums the
- * rounds: iterations kept, step 0's moves; energies (sq_optimize_energy)
- * and worst stretch before the first and after the last; `why` the last
- * round's. */
+ * rounds: iterations kept, step 0's moves; energies and worst stretch
+ * before the first round and after the last (each as its round measured
+ * it); `why` the last round's. One round is sq_optimize_map's report. */
 sq_status sq_optimize_map_free_or_fixed(sq_map *M, const sq_optimize_options *opt, sq_optimize_report *rep,
                                         sq_error *err);
 /* The energy of M without optimizing it: mean and max (either may be

@@ -51,10 +51,14 @@ static void on_iteration(void *user, uint32_t iteration, double energy, double s
 static void add_round(sq_optimize_report *rep, const sq_optimize_report *r)
 {
     if (rep->rounds++ == 0) {
+        rep->energy_before = r->energy_before;
+        rep->max_energy_before = r->max_energy_before;
         rep->relax_stretch_before = r->relax_stretch_before;
         rep->held_triangles = r->held_triangles;
         rep->unknowns = r->unknowns;
     }
+    rep->energy_after = r->energy_after;
+    rep->max_energy_after = r->max_energy_after;
     rep->relax_moves += r->relax_moves;
     rep->relax_stretch_after = r->relax_stretch_after;
     rep->changed |= r->changed;
@@ -74,7 +78,6 @@ sq_status sq_optimize_map_free_or_fixed(sq_map *M, const sq_optimize_options *op
         return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_optimize_map_free_or_fixed: a map and free translations");
     double t0 = sq_now();
     uint32_t budget = opt->max_iterations ? opt->max_iterations : 100, spent = 0, size = budget;
-    sq_optimize_energy(M, &rep->energy_before, &rep->max_energy_before);
     snprintf(rep->why, sizeof rep->why, "no iteration");
     while (spent < budget) {
         sq_optimize_options o = *opt;
@@ -106,7 +109,6 @@ sq_status sq_optimize_map_free_or_fixed(sq_map *M, const sq_optimize_options *op
         if (r.iterations < o.max_iterations) break;
         size = FIXED_ROUND;
     }
-    sq_optimize_energy(M, &rep->energy_after, &rep->max_energy_after);
     rep->seconds = sq_now() - t0;
     return SQ_OK;
 }
