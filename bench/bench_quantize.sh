@@ -22,6 +22,8 @@
 # once per model, as `seamquad optimize --iterations 600` (the same call
 # with the same defaults: sq_optimize_map_free_or_fixed), and quantize then
 # runs with --prepare off; its time is added to each row's quantize time.
+# SQ_BENCH_CACHE=DIR keeps those maps (MODEL.param.obj, MODEL.prep.obj and
+# its --json) across runs.
 # SQ_BENCH_QUANTIZE_ARGS: more options for quantize (e.g. "--prepare on");
 # SQ_BENCH_MODELS: the models to run (default: all 15).
 set -u
@@ -68,18 +70,19 @@ for n in "${targets[@]}"; do
     map=$mesh
     extra=() prep=0
     if [ "${SQ_BENCH_MAP:-published}" = param ]; then
-      map=$tmp/$m.param.obj
+      cache=${SQ_BENCH_CACHE:-$tmp}
+      map=$cache/$m.param.obj
       if [ ! -s "$map" ] && ! "$bin" param "$mesh" --cones "$cones" -o "$map" --quiet >/dev/null 2>"$tmp/err"; then
         echo "$row param failed: $(tail -1 "$tmp/err" | cut -c1-80) | | | | | | |"
         continue
       fi
-      if [ ! -s "$tmp/$m.prep.obj" ] && ! "$bin" optimize "$mesh" --map "$map" --iterations 600 \
-          -o "$tmp/$m.prep.obj" --json >"$tmp/$m.prep.json" 2>"$tmp/err"; then
+      if [ ! -s "$cache/$m.prep.obj" ] && ! "$bin" optimize "$mesh" --map "$map" --iterations 600 \
+          -o "$cache/$m.prep.obj" --json >"$cache/$m.prep.json" 2>"$tmp/err"; then
         echo "$row step 0 failed: $(tail -1 "$tmp/err" | cut -c1-80) | | | | | | |"
         continue
       fi
-      map=$tmp/$m.prep.obj extra=(--prepare off)
-      prep=$(python3 -c "import json; print(json.load(open('$tmp/$m.prep.json'))['time_s']['optimize'])")
+      map=$cache/$m.prep.obj extra=(--prepare off)
+      prep=$(python3 -c "import json; print(json.load(open('$cache/$m.prep.json'))['time_s']['optimize'])")
     fi
     # shellcheck disable=SC2086
     if "$bin" quantize "$mesh" --map "$map" --cones "$cones" --quads "$n" -o "$tmp/igm.obj" --json "${extra[@]}" ${SQ_BENCH_QUANTIZE_ARGS:-} \
