@@ -82,8 +82,9 @@ typedef struct sq_quantize_prepare_report {
     sq_optimize_report optimize; /* sq_optimize_map_free_or_fixed's report   */
 } sq_quantize_prepare_report;
 /* Lowers the distortion of the exact map M in place before sq_quantize
- * (sq_optimize_map_free_or_fixed; opt may be NULL: the defaults). M stays exact (sq_map_check passes), with the same mesh,
- * rotations and cones. rep may be NULL. */
+ * (sq_optimize_map_free_or_fixed; opt may be NULL: the defaults). M stays
+ * exact (sq_map_check passes), with the same mesh, rotations and cones.
+ * rep may be NULL. */
 sq_status sq_quantize_prepare(sq_map *M, const sq_quantize_prepare_options *opt,
                               sq_quantize_prepare_report *rep, sq_error *err);
 /* The integer-grid map of the exact map M (sq_map_check passes) at the
