@@ -567,6 +567,17 @@ static void write_param_map(const model *md, const char *tag, char *path, size_t
     sq_param_free(&P);
 }
 
+/* param's map of md, read back exact (through a temporary OBJ) */
+static void read_param_map(const model *md, const char *tag, sq_map *M)
+{
+    char path[256];
+    sq_error err;
+    write_param_map(md, tag, path, sizeof path);
+    if (sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, M, NULL, &err))
+        fail_msg("param map read back: %s", err.msg);
+    unlink(path);
+}
+
 static void test_progressive_param(void **state)
 {
     (void)state;
@@ -634,12 +645,8 @@ static void test_relax_param(void **state)
     model md;
     sq_error err;
     load("fandisk", &md);
-    char path[256];
-    write_param_map(&md, "r", path, sizeof path);
     sq_map M;
-    if (sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, &M, NULL, &err))
-        fail_msg("param map read back: %s", err.msg);
-    unlink(path);
+    read_param_map(&md, "r", &M);
     const sq_mesh *m = &M.mesh;
     double *uv0 = malloc(2 * (size_t)m->nh * sizeof *uv0), *t0 = malloc(2 * (size_t)m->nh * sizeof *t0);
     uint8_t *rot0 = malloc(m->nh);
@@ -685,12 +692,8 @@ static void test_free_or_fixed(void **state)
     model md;
     sq_error err;
     load("fandisk", &md);
-    char path[256];
-    write_param_map(&md, "f", path, sizeof path);
     sq_map M;
-    if (sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, &M, NULL, &err))
-        fail_msg("param map read back: %s", err.msg);
-    unlink(path);
+    read_param_map(&md, "f", &M);
     uint8_t *rot = malloc(M.mesh.nh);
     assert_non_null(rot);
     memcpy(rot, M.he_rot, M.mesh.nh);
@@ -772,14 +775,11 @@ static void test_quantize_prepare(void **state)
     assert_true(published > 1.3 && published < 1.35);
     prepared("knot1 published", &pub);
     sq_map_free(&pub);
-    /* param's map */
-    char path[256];
-    write_param_map(&md, "q", path, sizeof path);
+    /* param's map (param is deterministic: the same map twice) */
     sq_map M, raw;
-    if (sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, &M, NULL, &err) ||
-        sq_map_read(path, NULL, NULL, 0, SQ_MAP_REQUIRE_EXACT, &raw, NULL, &err))
-        fail_msg("param map read back: %s", err.msg);
-    unlink(path);
+    read_param_map(&md, "q", &M);
+    read_param_map(&md, "q", &raw);
+    assert_memory_equal(M.he_uv, raw.he_uv, 2 * (size_t)M.mesh.nh * sizeof *M.he_uv);
     assert_true(sq_map_conformal_mean(&M) > 100);
     assert_true(prepared("knot1 param", &M) < published);
     uint32_t bad_raw = bad_quads_after_untangling(&raw, 20000), bad = bad_quads_after_untangling(&M, 20000);
