@@ -800,13 +800,13 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
             else if (++prog_stalls == PROG_PATIENCE) prog = 0;
             if (nref) {
                 rep->reference_iterations++;
-                if (opt->progress) opt->progress(opt->user, it + 1, e_true, alpha);
+                if (opt->progress) opt->progress(opt->user, opt->progress_base + it + 1, e_true, alpha);
                 e = e_true;
                 continue;
             }
             prog = 0;
         }
-        if (opt->progress) opt->progress(opt->user, it + 1, e, alpha);
+        if (opt->progress) opt->progress(opt->user, opt->progress_base + it + 1, e, alpha);
         /* small progress with a full step: converged; with steps cut short
          * by the orientation guard three times in a row: stalled */
         if (drop >= tol) {

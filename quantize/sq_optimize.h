@@ -65,9 +65,12 @@ typedef struct sq_optimize_options {
      * that run the optimizer in rounds (sq_remesh_optimize). Default 0:
      * never worse. */
     int keep_last;
-    /* called after every iteration (may be NULL): a progress hook */
+    /* called after every iteration (may be NULL): a progress hook; the
+     * iteration it gets is counted from progress_base + 1 (callers that
+     * run the optimizer in rounds count across them) */
     void (*progress)(void *user, uint32_t iteration, double energy, double step);
     void *user;
+    uint32_t progress_base;
 } sq_optimize_options;
 
 typedef struct sq_optimize_report {

@@ -35,18 +35,6 @@
  * (remesh's rounds: sq_remesh_optimize.c) */
 #define FIXED_ROUND 5u
 
-/* the caller's progress hook, counting the iterations of every round */
-typedef struct round_progress {
-    const sq_optimize_options *base;
-    uint32_t done;
-} round_progress;
-
-static void on_iteration(void *user, uint32_t iteration, double energy, double step)
-{
-    const round_progress *rp = user;
-    rp->base->progress(rp->base->user, rp->done + iteration, energy, step);
-}
-
 /* r's figures added to the rounds' report */
 static void add_round(sq_optimize_report *rep, const sq_optimize_report *r)
 {
@@ -81,8 +69,7 @@ sq_status sq_optimize_map_free_or_fixed(sq_map *M, const sq_optimize_options *op
     snprintf(rep->why, sizeof rep->why, "no iteration");
     while (spent < budget) {
         sq_optimize_options o = *opt;
-        round_progress rp = {opt, rep->iterations};
-        if (opt->progress) o.progress = on_iteration, o.user = &rp;
+        o.progress_base = opt->progress_base + rep->iterations;
         o.max_iterations = size < budget - spent ? size : budget - spent;
         o.keep_last = opt->keep_last || o.max_iterations < budget - spent;
         sq_optimize_report r;
@@ -99,7 +86,7 @@ sq_status sq_optimize_map_free_or_fixed(sq_map *M, const sq_optimize_options *op
         }
         o.basis = SQ_OPTIMIZE_FIXED_TRANSITIONS;
         if (o.max_iterations > FIXED_ROUND) o.max_iterations = FIXED_ROUND;
-        rp.done = rep->iterations;
+        o.progress_base = opt->progress_base + rep->iterations;
         if ((st = sq_optimize_map(M, &o, &r, err))) return st;
         add_round(rep, &r);
         rep->fixed_rounds++;

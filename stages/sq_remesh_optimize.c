@@ -43,18 +43,6 @@ static void uv_to_param(const sq_map *M, sq_param *P)
         }
 }
 
-/* the caller's progress hook, counting the iterations of every round */
-typedef struct round_progress {
-    const sq_optimize_options *base;
-    uint32_t done;
-} round_progress;
-
-static void on_iteration(void *user, uint32_t iteration, double energy, double step)
-{
-    const round_progress *rp = user;
-    rp->base->progress(rp->base->user, rp->done + iteration, energy, step);
-}
-
 sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param *P,
                              const sq_optimize_options *base, uint32_t budget, sq_map *M,
                              sq_remesh_optimize_report *rep, sq_error *err)
@@ -67,8 +55,7 @@ sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param 
     rep->faces_before = M->mesh.nf;
     while (rep->iterations < budget) {
         sq_optimize_options o = *base;
-        round_progress rp = {base, rep->iterations};
-        if (base->progress) o.progress = on_iteration, o.user = &rp;
+        o.progress_base = base->progress_base + rep->iterations;
         uint32_t left = budget - rep->iterations;
         o.max_iterations = left > ROUND_ITERATIONS ? ROUND_ITERATIONS : left;
         o.keep_last = 1; /* a round may raise the surface energy on the way */
