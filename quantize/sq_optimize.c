@@ -59,13 +59,8 @@ typedef struct opt_ctx {
     double floor_r;      /* the references' weight floor (an area)            */
     double weight_f, weight_r; /* 1 / total area of F and of R                */
     double weight;       /* 1 / total surface area                            */
-    /* the Hessian pattern: lower triangle, CSR by row                        */
-    uint32_t *h_off;     /* nz + 1                                            */
-    uint32_t *h_col;     /* sorted within a row                               */
-    double *h_val;
-    uint32_t *h_row;     /* the row of every entry (for the solver)            */
+    sq_zsys sys;         /* the Newton system (sq_zsystem.c)                  */
     uint8_t *held;       /* nz or NULL: unknowns kept at their value           */
-    sq_spd *fac;         /* the analyzed factorization, refactored per step    */
 } opt_ctx;
 
 /* Triangles far smaller than the mean (a refinement's slivers: 1e-19 of it
@@ -186,201 +181,17 @@ static int all_positive(const sq_mesh *m, const double *he_uv)
     return 1;
 }
 
-static int cmp_u32(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return (x > y) - (x < y);
-}
-
-/* The lower-triangular pattern of P^T H P: every pair of unknowns that
- * share a triangle. */
-static sq_status build_pattern(opt_ctx *X, sq_error *err)
-{
-    const sq_mesh *m = X->m;
-    const sq_uv_basis *B = X->B;
-    uint32_t nz = B->nz;
-    uint32_t maxrow = 0;
-    for (uint32_t k = 0; k < B->ncoord; k++)
-        if (B->row_off[k + 1] - B->row_off[k] > maxrow) maxrow = B->row_off[k + 1] - B->row_off[k];
-    size_t *cnt = calloc((size_t)nz + 1, sizeof *cnt);
-    uint32_t *cols = malloc((6 * (size_t)maxrow + 1) * sizeof *cols);
-    if (!cnt || !cols) {
-        free(cnt);
-        free(cols);
-        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Hessian pattern)");
-    }
-    /* pass 0 counts, pass 1 fills (with repeats), then sort and unique */
-    uint32_t *fill = NULL, *pos = NULL;
-    size_t total = 0;
-    for (int pass = 0; pass < 2; pass++) {
-        for (uint32_t f = 0; f < m->nf; f++) {
-            uint32_t hc[3];
-            face_corners(m, f, hc);
-            uint32_t n = 0;
-            for (int c = 0; c < 3; c++)
-                for (int a = 0; a < 2; a++) {
-                    size_t k = 2 * (size_t)hc[c] + a;
-                    for (uint32_t j = B->row_off[k]; j < B->row_off[k + 1]; j++) {
-                        uint32_t q = B->col[j], i;
-                        for (i = 0; i < n && cols[i] != q; i++) {}
-                        if (i == n) cols[n++] = q;
-                    }
-                }
-            for (uint32_t i = 0; i < n; i++)
-                for (uint32_t j = 0; j < n; j++) {
-                    if (cols[j] > cols[i]) continue;
-                    if (pass == 0) cnt[cols[i]]++;
-                    else fill[pos[cols[i]]++] = cols[j];
-                }
-        }
-        if (pass == 0) {
-            pos = malloc(((size_t)nz + 1) * sizeof *pos);
-            size_t s = 0;
-            for (uint32_t i = 0; i < nz; i++) {
-                size_t c = cnt[i];
-                cnt[i] = s;
-                s += c;
-            }
-            cnt[nz] = s;
-            total = s;
-            if (total >= UINT32_MAX) {
-                free(cnt);
-                free(cols);
-                free(pos);
-                return sq_error_set(err, SQ_ERR_ARGUMENT, "Hessian pattern too large");
-            }
-            fill = malloc((total + 1) * sizeof *fill);
-            if (!pos || !fill) {
-                free(cnt);
-                free(cols);
-                free(pos);
-                free(fill);
-                return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Hessian pattern)");
-            }
-            for (uint32_t i = 0; i < nz; i++) pos[i] = (uint32_t)cnt[i];
-        }
-    }
-    free(pos);
-    free(cols);
-    /* sort and unique each row in place */
-    X->h_off = malloc(((size_t)nz + 1) * sizeof *X->h_off);
-    if (!X->h_off) {
-        free(cnt);
-        free(fill);
-        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Hessian pattern)");
-    }
-    uint32_t w = 0;
-    for (uint32_t i = 0; i < nz; i++) {
-        uint32_t *row = fill + cnt[i];
-        size_t len = cnt[i + 1] - cnt[i];
-        qsort(row, len, sizeof *row, cmp_u32);
-        X->h_off[i] = w;
-        for (size_t j = 0; j < len; j++)
-            if (j == 0 || row[j] != row[j - 1]) fill[w++] = row[j];
-    }
-    X->h_off[nz] = w;
-    free(cnt);
-    /* the unique entries into an array of their size (fill held repeats) */
-    X->h_col = malloc(((size_t)w + 1) * sizeof *X->h_col);
-    X->h_val = malloc(((size_t)w + 1) * sizeof *X->h_val);
-    if (X->h_col) memcpy(X->h_col, fill, (size_t)w * sizeof *fill);
-    free(fill);
-    if (!X->h_col || !X->h_val) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Hessian pattern)");
-    return SQ_OK;
-}
-
-static double *h_entry(opt_ctx *X, uint32_t i, uint32_t j)
-{
-    /* i >= j; binary search in row i */
-    uint32_t lo = X->h_off[i], hi = X->h_off[i + 1];
-    while (lo < hi) {
-        uint32_t mid = lo + (hi - lo) / 2;
-        if (X->h_col[mid] < j) lo = mid + 1;
-        else hi = mid;
-    }
-    return &X->h_val[lo];
-}
-
 /* g_z and H_z at the corners he_uv. */
 static void assemble(opt_ctx *X, const double *he_uv, double *gz)
 {
-    const sq_mesh *m = X->m;
-    const sq_uv_basis *B = X->B;
-    memset(gz, 0, B->nz * sizeof *gz);
-    memset(X->h_val, 0, X->h_off[B->nz] * sizeof *X->h_val);
-    for (uint32_t f = 0; f < m->nf; f++) {
+    sq_zsys_zero(&X->sys, gz);
+    for (uint32_t f = 0; f < X->m->nf; f++) {
         if (X->E[f].area == 0) continue;
-        uint32_t hc[3];
-        face_corners(m, f, hc);
         double uv[6], g[6], H[36];
-        face_uv(m, he_uv, f, uv);
+        face_uv(X->m, he_uv, f, uv);
         sq_sd_grad_hess(&X->E[f], uv, X->weight, g, H);
-        for (int k1 = 0; k1 < 6; k1++) {
-            size_t r1 = 2 * (size_t)hc[k1 / 2] + k1 % 2;
-            for (uint32_t j1 = B->row_off[r1]; j1 < B->row_off[r1 + 1]; j1++) {
-                uint32_t c1 = B->col[j1];
-                double v1 = B->val[j1];
-                gz[c1] += v1 * g[k1];
-                for (int k2 = 0; k2 < 6; k2++) {
-                    size_t r2 = 2 * (size_t)hc[k2 / 2] + k2 % 2;
-                    for (uint32_t j2 = B->row_off[r2]; j2 < B->row_off[r2 + 1]; j2++) {
-                        uint32_t c2 = B->col[j2];
-                        if (c2 > c1) continue;
-                        *h_entry(X, c1, c2) += v1 * H[k1 * 6 + k2] * B->val[j2];
-                    }
-                }
-            }
-        }
+        sq_zsys_add_face(&X->sys, f, g, H, gz);
     }
-}
-
-/* P d (the change of the corners for a change d of the unknowns). */
-static void basis_linear(const sq_uv_basis *B, const double *d, double *out)
-{
-    for (uint32_t k = 0; k < B->ncoord; k++) {
-        double s = 0;
-        for (uint32_t j = B->row_off[k]; j < B->row_off[k + 1]; j++) s += B->val[j] * d[B->col[j]];
-        out[k] = s;
-    }
-}
-
-/* One Newton direction: H_z d = -g_z. The first call analyzes the
- * pattern (ordering, symbolic factorization); later calls only refactor. */
-static sq_status newton_direction(opt_ctx *X, const double *gz, double *d, sq_error *err)
-{
-    uint32_t nz = X->B->nz, nnz = X->h_off[nz];
-    if (!X->h_row) {
-        X->h_row = malloc(((size_t)nnz + 1) * sizeof *X->h_row);
-        if (!X->h_row) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Newton system)");
-        for (uint32_t i = 0; i < nz; i++)
-            for (uint32_t j = X->h_off[i]; j < X->h_off[i + 1]; j++) X->h_row[j] = i;
-    }
-    double *rhs = malloc(((size_t)nz + 1) * sizeof *rhs);
-    if (!rhs) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Newton system)");
-    double diag = 0;
-    for (uint32_t i = 0; i < nz; i++) diag += *h_entry(X, i, i);
-    diag = nz ? diag / nz : 1.0;
-    if (!(diag > 0)) diag = 1.0;
-    for (uint32_t i = 0; i < nz; i++) rhs[i] = -gz[i];
-    if (X->held) {
-        /* a held unknown: its row and column become the identity's, its
-         * right-hand side 0, so its step is 0 */
-        for (uint32_t i = 0; i < nz; i++)
-            for (uint32_t j = X->h_off[i]; j < X->h_off[i + 1]; j++)
-                if (X->held[i] || X->held[X->h_col[j]]) X->h_val[j] = X->h_col[j] == i ? diag : 0.0;
-        for (uint32_t i = 0; i < nz; i++)
-            if (X->held[i]) rhs[i] = 0;
-    }
-    sq_status st = SQ_ERR_SOLVER;
-    for (double mu = 1e-10; mu < 1e2 && st; mu *= 100) {
-        for (uint32_t i = 0; i < nz; i++) *h_entry(X, i, i) += mu * diag;
-        if (X->fac) st = sq_spd_refactor(X->fac, nnz, X->h_row, X->h_col, X->h_val, err);
-        else st = sq_spd_factor_auto(nz, nnz, X->h_row, X->h_col, X->h_val, &X->fac, err);
-        if (!st) st = sq_spd_solve(X->fac, 1, rhs, d, err);
-        for (uint32_t i = 0; i < nz; i++) *h_entry(X, i, i) -= mu * diag;
-    }
-    free(rhs);
-    return st;
 }
 
 void sq_optimize_energy(const sq_map *M, double *mean, double *max)
@@ -736,7 +547,7 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         snprintf(rep->why, sizeof rep->why, "no free unknowns");
         goto done;
     }
-    if ((st = build_pattern(&X, err))) goto done;
+    if ((st = sq_zsys_init(&X.sys, &M->mesh, &B, err))) goto done;
     snprintf(rep->why, sizeof rep->why, "reached %u iterations", max_it);
     int stalls = 0, prog = X.R != NULL, prog_stalls = 0;
     double best_true = e;
@@ -750,7 +561,7 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
             e = energy(&X, uv, NULL);
         }
         assemble(&X, uv, gz);
-        st = newton_direction(&X, gz, d, err);
+        st = sq_zsys_solve(&X.sys, X.held, gz, d, err);
         rep->seconds_solve += sq_now() - ts;
         if (st) goto done;
         double slope = 0;
@@ -759,7 +570,7 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
             snprintf(rep->why, sizeof rep->why, "converged (no descent direction)");
             break;
         }
-        basis_linear(&B, d, duv);
+        sq_zsys_linear(&B, d, duv);
         double amax = INFINITY;
         for (uint32_t f = 0; f < m->nf; f++) {
             double a6[6], b6[6];
@@ -866,13 +677,9 @@ done:
     free(d);
     free(X.F);
     free(X.R);
-    free(X.h_off);
-    free(X.h_col);
-    free(X.h_val);
-    free(X.h_row);
+    sq_zsys_free(&X.sys);
     free(X.held);
     free(vseam);
-    sq_spd_free(X.fac);
     sq_uv_basis_free(&B);
     rep->seconds = sq_now() - t0;
     return st;

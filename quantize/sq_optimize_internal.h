@@ -7,6 +7,8 @@
 
 #include "sq_error.h"
 #include "sq_map.h"
+#include "sq_sparse.h"
+#include "sq_uv_basis.h"
 
 typedef struct sq_sd_face {
     double area;     /* on the (scaled) surface; 0: left out of the energy */
@@ -58,5 +60,35 @@ typedef struct sq_relax_report {
 
 sq_status sq_optimize_relax(const sq_map *M, const sq_sd_face *F, double bound, double grid,
                             double *he_uv, sq_relax_report *rep, sq_error *err);
+
+/* sq_zsystem.c: the Newton system of an energy summed over triangles in
+ * the unknowns z of basis B (he_uv = c + P z): H_z = sum P^T H_f P and
+ * g_z = sum P^T g_f, lower triangle, pattern built once (sq_zsys_init),
+ * solved by CHOLMOD (symbolic factorization once, refactored per solve). */
+typedef struct sq_zsys {
+    const sq_mesh *m;
+    const sq_uv_basis *B;
+    uint32_t *h_off;     /* nz + 1: CSR rows of the lower triangle           */
+    uint32_t *h_col;     /* sorted within a row                              */
+    double *h_val;
+    uint32_t *h_row;     /* the row of every entry (for the solver)          */
+    sq_spd *fac;         /* the analyzed factorization                       */
+} sq_zsys;
+
+sq_status sq_zsys_init(sq_zsys *S, const sq_mesh *m, const sq_uv_basis *B, sq_error *err);
+/* The entry (i, j), i >= j, of the pattern. */
+double *sq_zsys_entry(sq_zsys *S, uint32_t i, uint32_t j);
+/* H_z = 0 and gz (nz) = 0. */
+void sq_zsys_zero(sq_zsys *S, double *gz);
+/* Adds face f's gradient g and Hessian H (row-major 6x6) in its corner
+ * coordinates (corners from f_he[f] on, u v each) to H_z and gz. */
+void sq_zsys_add_face(sq_zsys *S, uint32_t f, const double g[6], const double H[36], double *gz);
+/* out (ncoord) = P d: the corners' change for a change d of the unknowns. */
+void sq_zsys_linear(const sq_uv_basis *B, const double *d, double *out);
+/* H_z d = -gz, with the smallest of 1e-10, 1e-8, ... times the mean
+ * diagonal added that factors; held (nz or NULL): unknowns whose step is
+ * 0. H_z's values are changed where held. */
+sq_status sq_zsys_solve(sq_zsys *S, const uint8_t *held, const double *gz, double *d, sq_error *err);
+void sq_zsys_free(sq_zsys *S);
 
 #endif

@@ -53,6 +53,14 @@ sq_status sq_uv_basis_fixed_transitions(const sq_map *M, sq_uv_basis *out, sq_er
  * sq_map_check. */
 sq_status sq_uv_basis_free_translations(const sq_map *M, sq_uv_basis *out, sq_error *err);
 
+/* The same space for a map that need not be valid yet (not checked): the
+ * seams are seam[h] (nh; set on both halfedges of every seam edge), the
+ * rotations he_rot (constant along every chain of seam edges between
+ * nodes); he_uv and he_t give only z0 and the pinned values (zeros are
+ * fine). For a map built from rotations alone (sq_map_untangle.h). */
+sq_status sq_uv_basis_free_translations_seams(const sq_map *M, const uint8_t *seam, sq_uv_basis *out,
+                                              sq_error *err);
+
 /* he_uv = c + P z (2 nh doubles, caller-allocated). */
 void sq_uv_basis_eval(const sq_uv_basis *B, const double *z, double *he_uv);
 

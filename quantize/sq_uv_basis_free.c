@@ -143,6 +143,8 @@ typedef struct crossing {
 typedef struct ctx {
     const sq_map *M;
     const sq_mesh *m;
+    const uint8_t *seam_in; /* nh or NULL: the seams given (not from M's      */
+                        /* transitions, which are then starting values only)  */
     uint8_t *seam;      /* nh: the edge's sides differ                        */
     uint32_t *deg;      /* nv: seam edges at the vertex                       */
     uint8_t *rtot;      /* nv: rotation of the transitions around it          */
@@ -287,8 +289,9 @@ static void find_wedges(ctx *X)
     const sq_map *M = X->M;
     const sq_mesh *m = X->m;
     for (uint32_t h = 0; h < m->nh; h++) {
-        X->seam[h] = M->he_rot[h] != 0 || M->he_t[2 * (size_t)h] != 0.0 ||
-                     M->he_t[2 * (size_t)h + 1] != 0.0;
+        X->seam[h] = X->seam_in ? X->seam_in[h] != 0
+                                : M->he_rot[h] != 0 || M->he_t[2 * (size_t)h] != 0.0 ||
+                                      M->he_t[2 * (size_t)h + 1] != 0.0;
         X->deg[m->he_vert[h]] += X->seam[h];
     }
     X->nw = 0;
@@ -333,7 +336,7 @@ static sq_status find_curves(ctx *X, sq_error *err)
                 X->he_dir[h] = 1;
                 X->he_dir[g] = -1;
                 const double *t = M->he_t + 2 * (size_t)h, *t0 = M->he_t + 2 * (size_t)h0;
-                if (M->he_rot[h] != M->he_rot[h0] || t[0] != t0[0] || t[1] != t0[1])
+                if (M->he_rot[h] != M->he_rot[h0] || (!X->seam_in && (t[0] != t0[0] || t[1] != t0[1])))
                     return sq_error_set(err, SQ_ERR_INTERNAL,
                                         "free-translation basis: the seam curve from vertex %u "
                                         "changes its transition at edge (%u, %u)",
@@ -802,6 +805,8 @@ static sq_status emit(ctx *X, sq_uv_basis *out, sq_error *err)
     return SQ_OK;
 }
 
+static sq_status build(const sq_map *M, const uint8_t *seam_in, sq_uv_basis *out, sq_error *err);
+
 sq_status sq_uv_basis_free_translations(const sq_map *M, sq_uv_basis *out, sq_error *err)
 {
     if (!M || !out)
@@ -813,6 +818,20 @@ sq_status sq_uv_basis_free_translations(const sq_map *M, sq_uv_basis *out, sq_er
                             "sq_uv_basis_free_translations: the map is not a valid exact seamless "
                             "map: %s",
                             tmp.msg);
+    return build(M, NULL, out, err);
+}
+
+sq_status sq_uv_basis_free_translations_seams(const sq_map *M, const uint8_t *seam, sq_uv_basis *out,
+                                              sq_error *err)
+{
+    if (!M || !seam || !out)
+        return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_uv_basis_free_translations_seams: NULL argument");
+    memset(out, 0, sizeof *out);
+    return build(M, seam, out, err);
+}
+
+static sq_status build(const sq_map *M, const uint8_t *seam_in, sq_uv_basis *out, sq_error *err)
+{
     const sq_mesh *m = &M->mesh;
     if (m->nh > UINT32_MAX / 2 - 1)
         return sq_error_set(err, SQ_ERR_ARGUMENT,
@@ -822,6 +841,7 @@ sq_status sq_uv_basis_free_translations(const sq_map *M, sq_uv_basis *out, sq_er
     memset(&X, 0, sizeof X);
     X.M = M;
     X.m = m;
+    X.seam_in = seam_in;
     size_t nh = m->nh, nv = m->nv;
     X.seam = malloc(nh + 1);
     X.deg = calloc(nv + 1, sizeof *X.deg);
