@@ -21,7 +21,8 @@ static void help(FILE *f)
             "usage: seamquad remesh MESH -o QUADS.obj [--cones FILE] [--map MAP.obj]\n"
             "                       [--quads N | --edge-length L]\n"
             "                       [--smooth on|off] [--step OUT.step] [--iges OUT.igs]\n"
-            "                       [--limit OUT.obj [--level K]] [--iterations N] [--seed S]\n"
+            "                       [--limit OUT.obj [--level K]] [--iterations N]\n"
+            "                       [--param auto|always] [--seed S]\n"
             "                       [--keep DIR] [--picture VIEW.svg] [--json] [--quiet]\n"
             "\n"
             "Turns the closed triangle mesh MESH (OBJ, OFF or PLY) into a closed, pure-quad\n"
@@ -30,10 +31,15 @@ static void help(FILE *f)
             "Stages, each checked before the next starts:\n"
             "  cones     the file given, or the singularities of a smooth cross field\n"
             "            (as `seamquad cones` computes them)\n"
+            "  map       a seamless map on MESH itself: the seam rotations of a smooth\n"
+            "            cross field with these cones, the map closest to the field,\n"
+            "            untangled (Garanzha et al. 2021) and checked exactly; where it\n"
+            "            is not valid (a triangle left flipped, an angle sum off by a\n"
+            "            turn), param builds the map instead\n"
             "  param     the seamless map built combinatorially (Zhou, Tu, Zorin and\n"
             "            Campen 2020): exact seams, every triangle positive, exactly\n"
-            "            the cones; valid, but distorted\n"
-            "  optimize  its distortion lowered with the seam rotations kept and the\n"
+            "            the cones, whatever the mesh; valid, but distorted and refined\n"
+            "  optimize  the map's distortion lowered with the seam rotations kept and the\n"
             "            translations free (symmetric Dirichlet, projected Newton with\n"
             "            progressive references; `seamquad optimize`)\n"
             "  quantize  the integer-grid map at the size asked (`seamquad quantize`)\n"
@@ -63,6 +69,7 @@ static void help(FILE *f)
             "The quality follows the map: where param's seam rotations around the\n"
             "handles disagree with a smooth cross field (docs/remesh.md lists the\n"
             "models), no optimizer reaches a low distortion and the quads are skewed.\n"
+            "The map on MESH itself has the field's rotations by construction.\n"
             "\n"
             "options:\n"
             "  -o QUADS.obj         the quad mesh\n"
@@ -85,9 +92,12 @@ static void help(FILE *f)
             "                       sooner where the map converges, most maps after 20\n"
             "                       to 170; fewer cost quality where they cut it short,\n"
             "                       about 0.2 s per iteration per 30K map faces)\n"
+            "  --param auto|always  auto (default): param only where the map on MESH itself\n"
+            "                       fails; always: param's map even where it is valid\n"
             "  --seed S             param's cut-graph seed (default 1; 4 attempts)\n"
             "  --keep DIR           also write every intermediate into DIR: cones.txt,\n"
-            "                       map.obj (param's; not with --map), optimized.obj, igm.obj\n"
+            "                       map.obj (the map before optimize; not with --map),\n"
+            "                       optimized.obj, igm.obj\n"
             "  --picture VIEW.svg   a shaded view of the quads (irregular vertices red\n"
             "                       below valence 4, blue above)\n"
             "  --json               statistics on stdout: per stage sizes, quality, times\n"
@@ -187,14 +197,21 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
     printf("cones         %u (%s)\n", s->cones, s->cones_from_field ? "from a smooth cross field" : "given");
     if (s->from_map)
         printf("map           given: %u faces\n", s->optimize.faces_before);
-    else
+    else if (s->map_from_rotations)
+        printf("map           on the mesh, from the field's rotations: %u seam edges, %u triangles\n"
+               "              untangled in %u iterations, %.2f s\n",
+               s->rotations.seam_edges, s->rotations.flipped_conformal, s->rotations.iterations, s->t_rotations);
+    else {
+        if (s->t_rotations > 0)
+            printf("map           on the mesh: not valid (%s), %.2f s\n", s->rotations.why, s->t_rotations);
         printf("param         %u faces (%u added vertices), attempt %u, %.2f s\n", s->param.faces_out,
                s->param.steiner, s->param.attempts, s->t_param);
+    }
     printf("optimize      mean conformal ratio %.4g -> %.4g, %u iterations (%u with progressive\n"
            "              references), %.2f s: %s\n",
            s->optimize.conformal_before, s->optimize.conformal_after, s->optimize.iterations,
            s->optimize.reference_iterations, s->t_optimize, s->optimize.why);
-    if (!s->from_map)
+    if (!s->from_map && !s->map_from_rotations)
         printf("simplify      %u rounds (%u with the translations fixed) removed %u added vertices:\n"
                "              %u -> %u faces\n",
                s->optimize.rounds, s->optimize.fixed_rounds, s->optimize.removed, s->optimize.faces_before,
@@ -247,6 +264,13 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
                (long long)sq_mesh_genus(m));
     printf(",\n  \"cones\": %u, \"cones_from_field\": %s, \"from_map\": %s", s->cones,
            s->cones_from_field ? "true" : "false", s->from_map ? "true" : "false");
+    printf(",\n  \"map_on_mesh\": {\"tried\": %s, \"valid\": %s, \"seam_edges\": %u, \"flipped\": %u, "
+           "\"untangle_iterations\": %u, \"flipped_after\": %u, \"seconds\": %.6f, \"why\": ",
+           s->t_rotations > 0 ? "true" : "false", s->map_from_rotations ? "true" : "false",
+           s->rotations.seam_edges, s->rotations.flipped_conformal, s->rotations.iterations,
+           s->rotations.flipped_after, s->t_rotations);
+    sq_json_string(stdout, s->rotations.why);
+    printf("}");
     printf(",\n  \"param\": {\"faces\": %u, \"steiner\": %u, \"attempts\": %u, \"seconds\": %.6f}",
            s->param.faces_out, s->param.steiner, s->param.attempts, s->t_param);
     printf(",\n  \"optimize\": {\"iterations\": %u, \"reference_iterations\": %u, \"rounds\": %u, "
@@ -280,10 +304,10 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
            "\"repaired\": %llu, \"repair_rounds\": %u, \"seconds\": %.6f}",
            (unsigned long long)s->self_intersections, (long long)s->input_self_intersections,
            (unsigned long long)s->repaired, s->repair_rounds, s->t_verify);
-    printf(",\n  \"time_s\": {\"cones\": %.6f, \"param\": %.6f, \"optimize\": %.6f, "
+    printf(",\n  \"time_s\": {\"cones\": %.6f, \"map_on_mesh\": %.6f, \"param\": %.6f, \"optimize\": %.6f, "
            "\"quantize\": %.6f, \"extract\": %.6f, \"smooth\": %.6f, \"verify\": %.6f, "
            "\"export\": %.6f, \"total\": %.6f}",
-           s->t_cones, s->t_param, s->t_optimize, s->t_quantize, s->t_extract, s->t_smooth, s->t_verify,
+           s->t_cones, s->t_rotations, s->t_param, s->t_optimize, s->t_quantize, s->t_extract, s->t_smooth, s->t_verify,
            surf->seconds, s->t_total + surf->seconds);
     if (st != SQ_OK) {
         printf(",\n  ");
@@ -313,6 +337,7 @@ int sq_cmd_remesh(int argc, char **argv)
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--cones") || !strcmp(a, "--map") ||
                    !strcmp(a, "--quads") || !strcmp(a, "--edge-length") || !strcmp(a, "--iterations") ||
                    !strcmp(a, "--seed") || !strcmp(a, "--keep") || !strcmp(a, "--picture") ||
+                   !strcmp(a, "--param") ||
                    !strcmp(a, "--smooth") || !strcmp(a, "--step") || !strcmp(a, "--iges") ||
                    !strcmp(a, "--limit") || !strcmp(a, "--level")) {
             if (i + 1 >= argc) {
@@ -353,6 +378,12 @@ int sq_cmd_remesh(int argc, char **argv)
                     return SQ_EXIT_USAGE;
                 }
                 opt.optimize_iterations = (uint32_t)x;
+            } else if (!strcmp(a, "--param")) {
+                if (strcmp(v, "auto") && strcmp(v, "always")) {
+                    fprintf(stderr, "seamquad remesh: --param takes auto or always, got '%s'\n", v);
+                    return SQ_EXIT_USAGE;
+                }
+                opt.always_param = !strcmp(v, "always");
             } else if (!strcmp(a, "--seed")) {
                 if (!sq_cli_number_option("remesh", a, v, &x) || x < 1 || x > 1e15 || x != floor(x)) {
                     fprintf(stderr, "seamquad remesh: --seed needs a positive integer, got '%s'\n", v);

@@ -30,6 +30,38 @@ void sq_map_free(sq_map *M)
     memset(M, 0, sizeof *M);
 }
 
+static void *dup(const void *p, size_t n)
+{
+    void *q = malloc(n ? n : 1);
+    if (q && n) memcpy(q, p, n);
+    return q;
+}
+
+sq_status sq_map_copy(const sq_map *M, sq_map *out, sq_error *err)
+{
+    memset(out, 0, sizeof *out);
+    const sq_mesh *m = &M->mesh;
+    size_t nh = m->nh, nv = m->nv, nf = m->nf;
+    out->mesh.nv = m->nv, out->mesh.nf = m->nf, out->mesh.nh = m->nh;
+    out->mesh.pos = dup(m->pos, 3 * nv * sizeof *m->pos);
+    out->mesh.he_next = dup(m->he_next, nh * sizeof *m->he_next);
+    out->mesh.he_twin = dup(m->he_twin, nh * sizeof *m->he_twin);
+    out->mesh.he_vert = dup(m->he_vert, nh * sizeof *m->he_vert);
+    out->mesh.he_face = dup(m->he_face, nh * sizeof *m->he_face);
+    out->mesh.v_he = dup(m->v_he, nv * sizeof *m->v_he);
+    out->mesh.f_he = dup(m->f_he, nf * sizeof *m->f_he);
+    out->he_uv = dup(M->he_uv, 2 * nh * sizeof *M->he_uv);
+    out->he_rot = dup(M->he_rot, nh * sizeof *M->he_rot);
+    out->he_t = dup(M->he_t, 2 * nh * sizeof *M->he_t);
+    out->valence = dup(M->valence, nv * sizeof *M->valence);
+    if (!out->mesh.pos || !out->mesh.he_next || !out->mesh.he_twin || !out->mesh.he_vert || !out->mesh.he_face ||
+        !out->mesh.v_he || !out->mesh.f_he || !out->he_uv || !out->he_rot || !out->he_t || !out->valence) {
+        sq_map_free(out);
+        return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (copy of a map of %u faces)", m->nf);
+    }
+    return SQ_OK;
+}
+
 void sq_map_angle_sums(const sq_mesh *m, const double *he_uv, double *sum)
 {
     memset(sum, 0, m->nv * sizeof *sum);

@@ -105,6 +105,9 @@ sq_status sq_map_check(const sq_map *M, unsigned flags, sq_error *err);
  * f v/vt lines, faces in the mesh's order (atomic, see sq_io.h). */
 sq_status sq_map_write_obj(const char *path, const sq_map *M, sq_error *err);
 
+/* A deep copy of M (out is overwritten; free it with sq_map_free). */
+sq_status sq_map_copy(const sq_map *M, sq_map *out, sq_error *err);
+
 void sq_map_free(sq_map *M);
 
 #ifdef __cplusplus

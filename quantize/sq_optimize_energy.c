@@ -111,12 +111,18 @@ double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, d
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++) P[i][j] -= lambda * t[i] * t[j];
     }
-    /* pull back: coordinate (c, a) is uv index 2c + a; dJ[2a+b]/duv[2c+a] = G[c][b] */
-    double s = weight * F->area;
+    sq_sd_pullback(F, dpsi, P, weight * F->area, g, H);
+    return f * (1.0 + id2);
+}
+
+void sq_sd_pullback(const sq_sd_face *F, const double dJ[4], const double P[4][4], double s, double g[6],
+                    double H[36])
+{
+    /* coordinate (c, a) is uv index 2c + a; dJ[2a+b]/duv[2c+a] = G[c][b] */
     for (int cc = 0; cc < 3; cc++)
         for (int a = 0; a < 2; a++) {
             int k = 2 * cc + a;
-            g[k] = s * (dpsi[2 * a] * F->G[cc][0] + dpsi[2 * a + 1] * F->G[cc][1]);
+            g[k] = s * (dJ[2 * a] * F->G[cc][0] + dJ[2 * a + 1] * F->G[cc][1]);
         }
     for (int c1 = 0; c1 < 3; c1++)
         for (int a1 = 0; a1 < 2; a1++)
@@ -128,8 +134,9 @@ double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, d
                             h += P[2 * a1 + b1][2 * a2 + b2] * F->G[c1][b1] * F->G[c2][b2];
                     H[(2 * c1 + a1) * 6 + 2 * c2 + a2] = s * h;
                 }
-    return f * (1.0 + id2);
 }
+
+void sq_sd_jacobian(const sq_sd_face *F, const double uv[6], double J[4]) { jacobian(F, uv, J); }
 
 /* t in [0, 1] with 2 cosh(2 t l1) + 2 cosh(2 t l2) = K (the energy of the
  * map over the reference, below), by bisection: the function rises with t */

@@ -29,6 +29,15 @@ double sq_sd_psi(const sq_sd_face *F, const double uv[6]);
 double sq_sd_grad_hess(const sq_sd_face *F, const double uv[6], double weight, double g[6],
                        double H[36]);
 
+/* J (vec order 00, 01, 10, 11) of the corners uv against F. */
+void sq_sd_jacobian(const sq_sd_face *F, const double uv[6], double J[4]);
+
+/* A per-triangle function of J with gradient dJ and Hessian P (4x4, in
+ * J's vec order) pulled back to the corner coordinates, times s: g (6) and
+ * H (row-major 6x6). */
+void sq_sd_pullback(const sq_sd_face *F, const double dJ[4], const double P[4][4], double s, double g[6],
+                    double H[36]);
+
 /* The progressive reference of F at the corners uv (Liu et al. 2018,
  * "Progressive Parameterizations"): with J = U diag(s1, s2) V^T the map's
  * Jacobian, the triangle whose Jacobian from the surface is

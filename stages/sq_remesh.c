@@ -1,8 +1,9 @@
 /* seamquad: the pipeline from a closed triangle mesh to a quad mesh
  * (sq_remesh.h; docs/remesh.md).
  *
- * Each stage's result is checked before the next starts: param verifies its
- * own map exactly, stage 3 re-checks it as an sq_map, the optimizer and the
+ * Each stage's result is checked before the next starts: the map on the
+ * mesh from the field's rotations and param's map are checked exactly
+ * (param's again as an sq_map, stage 3), the optimizer and the
  * quantizer return maps that pass sq_map_check (the integer-grid map with
  * SQ_MAP_REQUIRE_INTEGER), and the extraction builds its mesh only from a
  * valid integer-grid map. Two things no stage before checks: a quad folded
@@ -11,9 +12,11 @@
  * each other or through a thin part of the surface, which the verify stage
  * finds with CGAL's exact test and refuses.
  *
- * Cost: dominated by the optimizer (stage 4: one sparse Cholesky per
- * iteration on about twice the vertices of param's refinement) and by
- * param on large cone sets; memory by param's refinement. */
+ * Cost: where the map on the mesh itself is valid (13 of the 15 mpz
+ * models), a few seconds for stages 2 to 4 (sparse Cholesky factorizations
+ * of the input's size); otherwise dominated by the optimizer on param's
+ * refinement (one sparse Cholesky per iteration on about twice its
+ * vertices) and by param on large cone sets; memory by the refinement. */
 #include "sq_remesh.h"
 
 #include <math.h>
@@ -24,6 +27,7 @@
 #include "sq_clock.h"
 #include "sq_cgal_adapter.h"
 #include "sq_closest_point.h"
+#include "sq_cone_connection.h"
 #include "sq_cones.h"
 
 /* The share of the whole run each stage is given in the progress report
@@ -323,11 +327,11 @@ void sq_remesh_result_free(sq_remesh_result *r)
     memset(r, 0, sizeof *r);
 }
 
-sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_options *opt,
-                    sq_remesh_result *out, sq_remesh_stats *stats, sq_error *err)
+/* One run of the pipeline; *cones (if not NULL) gets a copy of the cones
+ * once stage 1 has them, whatever happens after. */
+static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_remesh_options *opt,
+                             sq_remesh_result *out, sq_remesh_stats *stats, int32_t **cones, sq_error *err)
 {
-    sq_remesh_stats local;
-    if (!stats) stats = &local;
     memset(stats, 0, sizeof *stats);
     sq_map M, igm;
     memset(&M, 0, sizeof M);
@@ -389,10 +393,35 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     if (st) goto fail;
     for (uint32_t v = 0; v < m->nv; v++) stats->cones += out->valence[v] != 4;
     stats->t_cones = sq_now() - t0;
+    if (cones && (*cones = malloc(((size_t)m->nv + 1) * sizeof **cones)))
+        memcpy(*cones, out->valence, (size_t)m->nv * sizeof **cones);
 
-    /* 2. param (seed 7-9), unless the caller gave the map */
+    /* 2. the map: on the mesh itself from the cross field's rotations
+     * (sq_map_from_rotations); where that fails, or when asked, param's
+     * (seed 7-9). Not when the caller gave the map. */
     double t1 = sq_now();
-    if (!stats->from_map) {
+    if (!stats->from_map && !opt->always_param) {
+        begin(&pc, stats, "map", SHARE_PARAM);
+        double *turn = malloc(((size_t)m->nh + 1) * sizeof *turn);
+        if (!turn) {
+            st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (cone connection)");
+            goto fail;
+        }
+        sq_error e2;
+        st = sq_cone_connection(m, out->valence, turn, NULL, &e2);
+        if (st == SQ_OK) st = sq_map_from_rotations(m, out->valence, turn, NULL, &M, &stats->rotations, err);
+        else if (st != SQ_ERR_NOMEM) {
+            snprintf(stats->rotations.why, sizeof stats->rotations.why, "cone connection: %.150s", e2.msg);
+            st = SQ_OK;
+        } else
+            sq_error_set(err, st, "%s", e2.msg);
+        free(turn);
+        stats->map_from_rotations = stats->rotations.valid;
+        stats->t_rotations = sq_now() - t1;
+        if (st) goto fail;
+    }
+    t1 = sq_now();
+    if (!stats->from_map && !stats->map_from_rotations) {
         begin(&pc, stats, "param", SHARE_PARAM);
         sq_param_options po;
         sq_param_options_default(&po);
@@ -405,19 +434,23 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
         if (st) goto fail;
     }
 
-    /* 3 and 4. the map, exact, optimized and simplified in rounds (the
-     * caller's map: optimized whole, it has no added vertices to remove) */
+    /* 3 and 4. the map, exact, optimized; param's is simplified in rounds
+     * (a map on the mesh, the caller's or the field's, is optimized whole:
+     * it has no added vertices to remove) */
     t1 = sq_now();
     begin(&pc, stats, "optimize", SHARE_OPTIMIZE);
-    if (opt->keep_maps && !stats->from_map && (st = sq_remesh_param_map(&P, m, out->valence, &out->map, err)))
-        goto fail;
+    if (opt->keep_maps) {
+        if (stats->map_from_rotations) st = sq_map_copy(&M, &out->map, err);
+        else if (!stats->from_map) st = sq_remesh_param_map(&P, m, out->valence, &out->map, err);
+        if (st) goto fail;
+    }
     sq_optimize_options oo;
     memset(&oo, 0, sizeof oo);
     oo.basis = SQ_OPTIMIZE_FREE_TRANSLATIONS;
     pc.iterations = opt->optimize_iterations ? opt->optimize_iterations : SQ_REMESH_ITERATIONS;
     oo.progress = optimize_progress;
     oo.user = &pc;
-    if (stats->from_map) {
+    if (stats->from_map || stats->map_from_rotations) {
         sq_remesh_optimize_report *rep = &stats->optimize;
         rep->conformal_before = sq_map_conformal_mean(&M);
         rep->faces_before = rep->faces_after = M.mesh.nf;
@@ -580,5 +613,52 @@ fail:
     sq_map_free(&M);
     sq_map_free(&igm);
     sq_remesh_result_free(out);
+    return st;
+}
+
+/* The progress of both runs: a second run (param's map) reports its
+ * stages again, never behind the first's last fraction. */
+typedef struct monotone {
+    void (*progress)(void *user, const char *stage, double fraction);
+    void *user;
+    double last;
+} monotone;
+
+static void monotone_progress(void *user, const char *stage, double fraction)
+{
+    monotone *mo = user;
+    if (fraction > mo->last) mo->last = fraction;
+    mo->progress(mo->user, stage, mo->last);
+}
+
+sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_options *opt,
+                    sq_remesh_result *out, sq_remesh_stats *stats, sq_error *err)
+{
+    sq_remesh_stats local;
+    if (!stats) stats = &local;
+    if (!opt) return remesh_once(m, valence, opt, out, stats, NULL, err);
+    int32_t *cones = NULL;
+    monotone mo = {opt->progress, opt->user, 0};
+    sq_remesh_options o1 = *opt;
+    if (opt->progress) o1.progress = monotone_progress, o1.user = &mo;
+    sq_status st = remesh_once(m, valence, &o1, out, stats, &cones, err);
+    /* where the quads of the map on the mesh fail a later stage (an arc of
+     * the T-mesh far shorter than a quad, as on a cube whose map is exact;
+     * quads through each other), param's map gets its turn */
+    if (st && stats->map_from_rotations && st != SQ_ERR_NOMEM && cones) {
+        sq_rotation_map_report first = stats->rotations;
+        const char *stage = stats->stage ? stats->stage : "?";
+        snprintf(first.why, sizeof first.why, "its quads failed at %s: %.150s", stage, err ? err->msg : "");
+        first.valid = 0;
+        double lost = stats->t_total;
+        sq_remesh_options o2 = o1;
+        o2.always_param = 1;
+        st = remesh_once(m, cones, &o2, out, stats, NULL, err);
+        stats->cones_from_field = valence == NULL;
+        stats->rotations = first;
+        stats->t_rotations = lost;
+        stats->t_total += lost;
+    }
+    free(cones);
     return st;
 }

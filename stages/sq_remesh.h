@@ -51,6 +51,7 @@
 #include "sq_error.h"
 #include "sq_extract.h"
 #include "sq_map.h"
+#include "sq_map_from_rotations.h"
 #include "sq_mesh.h"
 #include "sq_optimize.h"
 #include "sq_param.h"
@@ -79,6 +80,9 @@ typedef struct sq_remesh_options {
     uint32_t attempts;             /* param's attempts (0: 4)                */
     int keep_maps;                 /* 1: the result keeps the three maps     */
     int no_smoothing;              /* 1: skip stage 7                        */
+    int always_param;              /* 1: stage 2 builds param's map even     */
+                                   /* where the map on the mesh from the     */
+                                   /* field's rotations is valid             */
     sq_map *map;                   /* NULL, or a seamless map of the mesh to */
                                    /* start from (sq_map_read: exact): its   */
                                    /* cones are the run's, stages 1 and 2    */
@@ -111,6 +115,8 @@ typedef struct sq_remesh_stats {
     int from_map;                  /* 1: started from the caller's map       */
     uint32_t cones;                /* vertices of valence != 4               */
     sq_cones_from_field_stats field;
+    sq_rotation_map_report rotations; /* stage 2's map on the mesh itself   */
+    int map_from_rotations;        /* 1: it was valid and used (no param)    */
     sq_param_stats param;
     sq_remesh_optimize_report optimize;
     sq_quantize_stats quantize;
@@ -133,6 +139,7 @@ typedef struct sq_remesh_stats {
     double t_verify;               /* the self-intersection test             */
     uint64_t repaired;             /* intersecting pairs the repair removed  */
     uint32_t repair_rounds;        /* its rounds (0: nothing to repair)      */
+    double t_rotations;            /* stage 2's map on the mesh (tried)      */
     double t_cones, t_param, t_optimize, t_quantize, t_extract, t_smooth, t_total; /* stage 3 in t_optimize */
 } sq_remesh_stats;
 

@@ -6,8 +6,11 @@
  *    quad count within 5% of the target, no folded quad left, no two of
  *    its triangles intersecting (the verify stage's count), every stage
  *    timed, the progress reported from 0 to 1 in order;
- *  - the kept maps: param's map exact (integer), the optimized map exact
- *    and less distorted, the integer-grid map exact and integer;
+ *  - the kept maps: by default the map on the mesh itself (exact, the
+ *    input's faces, mean conformal ratio below 1.3 before and after the
+ *    optimizer); with always_param param's map exact (integer), the
+ *    optimized map exact and less distorted, the integer-grid map exact and
+ *    integer;
  *  - bad arguments and unrealizable cones fail with the stage named and
  *    nothing returned. */
 #include <math.h>
@@ -158,7 +161,24 @@ static void test_eight_kept_maps(void **state)
     opt.keep_maps = 1;
     sq_remesh_result R;
     sq_remesh_stats st;
+    /* by default the map on the mesh itself: no added vertex, the field's
+     * rotations, low distortion before any optimization */
     if (sq_remesh(&mesh, val, &opt, &R, &st, &err)) fail_msg("%s: %s", st.stage, err.msg);
+    assert_true(st.map_from_rotations && st.rotations.valid);
+    check_quads(&mesh, &R, 2000);
+    assert_int_equal(sq_map_check(&R.map, 0, &err), SQ_OK);
+    assert_int_equal(R.map.mesh.nf, mesh.nf);
+    assert_int_equal(R.optimized.mesh.nf, mesh.nf);
+    assert_int_equal(sq_map_check(&R.igm, SQ_MAP_REQUIRE_INTEGER, &err), SQ_OK);
+    print_message("eight, map on the mesh: conformal %.4g -> %.4g, %u iterations\n", st.optimize.conformal_before,
+                  st.optimize.conformal_after, st.optimize.iterations);
+    assert_true(st.optimize.conformal_before < 1.3 && st.optimize.conformal_after < 1.3);
+    assert_int_equal(st.param.faces_out, 0); /* param did not run */
+    sq_remesh_result_free(&R);
+    /* param's map when asked */
+    opt.always_param = 1;
+    if (sq_remesh(&mesh, val, &opt, &R, &st, &err)) fail_msg("%s: %s", st.stage, err.msg);
+    assert_false(st.map_from_rotations);
     assert_false(st.cones_from_field);
     assert_memory_equal(R.valence, val, mesh.nv * sizeof *val);
     check_quads(&mesh, &R, 2000);
