@@ -22,7 +22,7 @@ static void help(FILE *f)
             "                       [--quads N | --edge-length L]\n"
             "                       [--smooth on|off] [--step OUT.step] [--iges OUT.igs]\n"
             "                       [--limit OUT.obj [--level K]] [--iterations N]\n"
-            "                       [--param auto|always] [--seed S]\n"
+            "                       [--param auto|always|never] [--seed S]\n"
             "                       [--keep DIR] [--picture VIEW.svg] [--json] [--quiet]\n"
             "\n"
             "Turns the closed triangle mesh MESH (OBJ, OFF or PLY) into a closed, pure-quad\n"
@@ -92,8 +92,12 @@ static void help(FILE *f)
             "                       sooner where the map converges, most maps after 20\n"
             "                       to 170; fewer cost quality where they cut it short,\n"
             "                       about 0.2 s per iteration per 30K map faces)\n"
-            "  --param auto|always  auto (default): param only where the map on MESH itself\n"
-            "                       fails; always: param's map even where it is valid\n"
+            "  --param MODE         auto (default): param's map where the map on MESH itself\n"
+            "                       is not valid, or where its quads fail a later stage\n"
+            "                       (the stages then run again: on a large mesh param's\n"
+            "                       refined map takes minutes to optimize); always:\n"
+            "                       param's map only; never: the map on MESH only (a\n"
+            "                       failure is final, and quick)\n"
             "  --seed S             param's cut-graph seed (default 1; 4 attempts)\n"
             "  --keep DIR           also write every intermediate into DIR: cones.txt,\n"
             "                       map.obj (the map before optimize; not with --map),\n"
@@ -379,11 +383,12 @@ int sq_cmd_remesh(int argc, char **argv)
                 }
                 opt.optimize_iterations = (uint32_t)x;
             } else if (!strcmp(a, "--param")) {
-                if (strcmp(v, "auto") && strcmp(v, "always")) {
-                    fprintf(stderr, "seamquad remesh: --param takes auto or always, got '%s'\n", v);
+                if (strcmp(v, "auto") && strcmp(v, "always") && strcmp(v, "never")) {
+                    fprintf(stderr, "seamquad remesh: --param takes auto, always or never, got '%s'\n", v);
                     return SQ_EXIT_USAGE;
                 }
-                opt.always_param = !strcmp(v, "always");
+                opt.param = !strcmp(v, "always") ? SQ_REMESH_PARAM_ALWAYS
+                            : !strcmp(v, "never") ? SQ_REMESH_PARAM_NEVER : SQ_REMESH_PARAM_AUTO;
             } else if (!strcmp(a, "--seed")) {
                 if (!sq_cli_number_option("remesh", a, v, &x) || x < 1 || x > 1e15 || x != floor(x)) {
                     fprintf(stderr, "seamquad remesh: --seed needs a positive integer, got '%s'\n", v);

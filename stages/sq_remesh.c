@@ -400,7 +400,7 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
      * (sq_map_from_rotations); where that fails, or when asked, param's
      * (seed 7-9). Not when the caller gave the map. */
     double t1 = sq_now();
-    if (!stats->from_map && !opt->always_param) {
+    if (!stats->from_map && opt->param != SQ_REMESH_PARAM_ALWAYS) {
         begin(&pc, stats, "map", SHARE_PARAM);
         double *turn = malloc(((size_t)m->nh + 1) * sizeof *turn);
         if (!turn) {
@@ -419,6 +419,11 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
         stats->map_from_rotations = stats->rotations.valid;
         stats->t_rotations = sq_now() - t1;
         if (st) goto fail;
+        if (!stats->map_from_rotations && opt->param == SQ_REMESH_PARAM_NEVER) {
+            st = sq_error_set(err, SQ_ERR_SOLVER, "no valid map on the mesh (%s), and param is not to run (--param never)",
+                              stats->rotations.why);
+            goto fail;
+        }
     }
     t1 = sq_now();
     if (!stats->from_map && !stats->map_from_rotations) {
@@ -645,14 +650,14 @@ sq_status sq_remesh(const sq_mesh *m, const int32_t *valence, const sq_remesh_op
     /* where the quads of the map on the mesh fail a later stage (an arc of
      * the T-mesh far shorter than a quad, as on a cube whose map is exact;
      * quads through each other), param's map gets its turn */
-    if (st && stats->map_from_rotations && st != SQ_ERR_NOMEM && cones) {
+    if (st && stats->map_from_rotations && st != SQ_ERR_NOMEM && cones && opt->param != SQ_REMESH_PARAM_NEVER) {
         sq_rotation_map_report first = stats->rotations;
         const char *stage = stats->stage ? stats->stage : "?";
         snprintf(first.why, sizeof first.why, "its quads failed at %s: %.150s", stage, err ? err->msg : "");
         first.valid = 0;
         double lost = stats->t_total;
         sq_remesh_options o2 = o1;
-        o2.always_param = 1;
+        o2.param = SQ_REMESH_PARAM_ALWAYS;
         st = remesh_once(m, cones, &o2, out, stats, NULL, err);
         stats->cones_from_field = valence == NULL;
         stats->rotations = first;

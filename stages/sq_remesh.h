@@ -71,6 +71,8 @@ extern "C" {
  * more at 600. */
 #define SQ_REMESH_ITERATIONS 600u
 
+enum { SQ_REMESH_PARAM_AUTO = 0, SQ_REMESH_PARAM_ALWAYS = 1, SQ_REMESH_PARAM_NEVER = 2 };
+
 typedef struct sq_remesh_options {
     double quads;                  /* about this many quads; 0 with          */
                                    /* edge_length 0: SQ_REMESH_QUADS         */
@@ -80,9 +82,10 @@ typedef struct sq_remesh_options {
     uint32_t attempts;             /* param's attempts (0: 4)                */
     int keep_maps;                 /* 1: the result keeps the three maps     */
     int no_smoothing;              /* 1: skip stage 7                        */
-    int always_param;              /* 1: stage 2 builds param's map even     */
-                                   /* where the map on the mesh from the     */
-                                   /* field's rotations is valid             */
+    int param;                     /* stage 2: SQ_REMESH_PARAM_AUTO (0):     */
+                                   /* param's map where the map on the mesh  */
+                                   /* fails or its quads do; _ALWAYS: param's */
+                                   /* only; _NEVER: the map on the mesh only */
     sq_map *map;                   /* NULL, or a seamless map of the mesh to */
                                    /* start from (sq_map_read: exact): its   */
                                    /* cones are the run's, stages 1 and 2    */

@@ -9,8 +9,10 @@
  * diagonal) cut each other, every vertex on the surface. The repair moves
  * the vertices of the quads involved, cones excepted, towards the mean of
  * their edge neighbours, projected back onto the input (closest point),
- * each move halved until no quad around the vertex is folded that was not
- * (sq_quad_fold_margin); after each round the whole test runs again. A
+ * each move halved until no quad around the vertex is folded or turned
+ * over on the surface that was not (sq_quad_fold_margin,
+ * sq_quad_turn_margin with the surface normals at the corners' closest
+ * points); after each round the whole test runs again. A
  * round that does not lower the count widens the moved set by a ring. The
  * positions with the fewest pairs are kept; the caller fails the run if
  * any is left. Cost: one CGAL test per round (0.04 s at 5K quads). */
@@ -108,6 +110,29 @@ sq_status sq_remesh_quad_intersections(const sq_quad_mesh *Q, uint64_t *pairs, u
     return st;
 }
 
+/* The smallest turn margin (sq_quad_turn_margin: < 0 for a quad turned
+ * over on the surface) of the quads around v, each corner's surface
+ * normal taken at its closest point on m. */
+static double star_worst_turn(const sq_quad_star *S, const sq_quad_mesh *Q, const sq_cp_tree *tree,
+                              const sq_mesh *m, const double *vn, uint32_t v)
+{
+    double worst = INFINITY;
+    for (uint32_t k = S->off[v]; k < S->off[v + 1]; k++) {
+        const uint32_t *q = Q->quad + 4 * (size_t)S->quad[k];
+        const double *p[4], *n[4];
+        double nn[4][3];
+        for (int c = 0; c < 4; c++) {
+            p[c] = Q->pos + 3 * (size_t)q[c];
+            sq_cp_hit hit;
+            sq_cp_tree_query(tree, p[c], &hit);
+            sq_mesh_normal_at(m, vn, hit.tri, hit.bary, nn[c]);
+            n[c] = nn[c];
+        }
+        worst = fmin(worst, sq_quad_turn_margin(p, n));
+    }
+    return worst;
+}
+
 sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint64_t *pairs, uint32_t *rounds,
                                          sq_error *err)
 {
@@ -115,7 +140,7 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
     *rounds = 0;
     uint32_t *list = malloc(2 * (size_t)REPAIR_LIST * sizeof *list), *tri = NULL;
     uint8_t *mark = calloc((size_t)nv + 1, 1), *grow = calloc((size_t)nv + 1, 1);
-    double *best = malloc(3 * ((size_t)nv + 1) * sizeof *best);
+    double *best = malloc(3 * ((size_t)nv + 1) * sizeof *best), *vn = NULL;
     sq_quad_star S = {NULL, NULL, NULL};
     sq_cp_tree tree;
     memset(&tree, 0, sizeof tree);
@@ -125,7 +150,7 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
         goto done;
     }
     if ((st = sq_remesh_quad_intersections(Q, pairs, list, REPAIR_LIST, err)) || !*pairs) goto done;
-    if (!(tri = sq_mesh_triangles(m))) {
+    if (!(tri = sq_mesh_triangles(m)) || !(vn = sq_mesh_vertex_normals(m))) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (intersection repair)");
         goto done;
     }
@@ -155,6 +180,7 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
             for (uint32_t k = S.off[v]; k < S.off[v + 1]; k++)
                 for (int i = 0; i < 3; i++) tgt[i] += Q->pos[3 * (size_t)S.next[k] + i] / deg;
             double before = sq_quad_star_worst_margin(&S, Q->pos, Q->quad, v);
+            double turn_before = star_worst_turn(&S, Q, &tree, m, vn, v);
             int moved = 0;
             for (double step = 1.0; step > 1.0 / 16 && !moved; step *= 0.5) {
                 double x[3];
@@ -164,6 +190,10 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
                 memcpy(p, hit.point, sizeof old);
                 double after = sq_quad_star_worst_margin(&S, Q->pos, Q->quad, v);
                 moved = after >= 0.0 || after >= before;
+                if (moved) {
+                    double turn = star_worst_turn(&S, Q, &tree, m, vn, v);
+                    moved = turn >= 0.0 || turn >= turn_before;
+                }
             }
             if (!moved) memcpy(p, old, sizeof old);
         }
@@ -181,6 +211,6 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
 done:
     sq_cp_tree_free(&tree);
     sq_quad_star_free(&S);
-    free(list), free(tri), free(mark), free(grow), free(best);
+    free(list), free(tri), free(mark), free(grow), free(best), free(vn);
     return st;
 }

@@ -283,7 +283,10 @@ refused "unknown option" 2 "unknown option" "$cube" --frobnicate -o "$tmp/e/q.ob
 refused "output .ply" 2 "must be an .obj" "$cube" -o "$tmp/e/q.ply"
 refused "output = input" 2 "would overwrite" "$cube" -o "$cube"
 refused "--smooth maybe" 2 "on or off" "$cube" --smooth maybe -o "$tmp/e/q.obj"
-refused "--param sometimes" 2 "auto or always" "$cube" --param sometimes -o "$tmp/e/q.obj"
+refused "--param sometimes" 2 "auto, always or never" "$cube" --param sometimes -o "$tmp/e/q.obj"
+# helmet has no valid map on the mesh itself: with --param never that is final
+refused "--param never" 3 "param is not to run" "$shared/data/mpz/helmet.obj" \
+  --cones "$shared/data/mpz/helmet_Th_hat" --param never -o "$tmp/e/q.obj"
 refused "--level without --limit" 2 "give --limit" "$cube" --level 2 -o "$tmp/e/q.obj"
 refused "--level 9" 2 "from 0 to 8" "$cube" --level 9 --limit "$tmp/e/l.obj" -o "$tmp/e/q.obj"
 refused "--limit .ply" 2 "must be an .obj" "$cube" --limit "$tmp/e/l.ply" -o "$tmp/e/q.obj"

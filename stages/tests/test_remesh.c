@@ -8,7 +8,7 @@
  *    timed, the progress reported from 0 to 1 in order;
  *  - the kept maps: by default the map on the mesh itself (exact, the
  *    input's faces, mean conformal ratio below 1.3 before and after the
- *    optimizer); with always_param param's map exact (integer), the
+ *    optimizer); with SQ_REMESH_PARAM_ALWAYS param's map exact (integer), the
  *    optimized map exact and less distorted, the integer-grid map exact and
  *    integer;
  *  - bad arguments and unrealizable cones fail with the stage named and
@@ -176,7 +176,7 @@ static void test_eight_kept_maps(void **state)
     assert_int_equal(st.param.faces_out, 0); /* param did not run */
     sq_remesh_result_free(&R);
     /* param's map when asked */
-    opt.always_param = 1;
+    opt.param = SQ_REMESH_PARAM_ALWAYS;
     if (sq_remesh(&mesh, val, &opt, &R, &st, &err)) fail_msg("%s: %s", st.stage, err.msg);
     assert_false(st.map_from_rotations);
     assert_false(st.cones_from_field);
