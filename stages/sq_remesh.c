@@ -151,6 +151,11 @@ static sq_status check_final_shapes(const sq_mesh *m, const sq_quad_mesh *Q, sq_
     on_surface_locate(&o, Q);
     st = sq_quad_mesh_check_shapes(Q, m, o.face, o.bary, sq_bbox_diagonal(m->nv, m->pos), NULL, err);
     on_surface_free(&o);
+    /* the run's own result failed, not its input: a stage failure */
+    if (st == SQ_ERR_DEGENERATE) {
+        st = SQ_ERR_SOLVER;
+        if (err) err->code = st;
+    }
     return st;
 }
 
