@@ -11,6 +11,7 @@
 #   SQ_BENCH_TARGETS  quad targets (default "5000")
 #   SQ_BENCH_PEERS    1: run the peers too (default 1)
 #   SQ_BENCH_ITER     seamquad's optimizer iterations (default: remesh's)
+#   SQ_BENCH_ARGS     more arguments for seamquad remesh (e.g. "--param never")
 #   SQ_BENCH_MAP      1: seamquad starts from the seamless map stored in MESH
 #                     (its vt: the published maps of mpz/*.obj) with
 #                     `--map MESH`, instead of param's (default 0)
@@ -31,6 +32,7 @@ shared=${SQ_SHARED_DIR:-$root/../shared}
 peers=${SQ_BENCH_PEERS:-1}
 targets=${SQ_BENCH_TARGETS:-5000}
 iter=${SQ_BENCH_ITER:-}
+read -r -a extra <<<"${SQ_BENCH_ARGS:-}"
 models=("$@")
 if [ ${#models[@]} = 0 ]; then
   # smallest param maps first (the larger take minutes each)
@@ -86,6 +88,7 @@ for spec in "${models[@]}"; do
     args=(remesh "$mesh" --quads "$n" -o "$tmp/sq.obj" --quiet)
     [ -n "$cones" ] && args+=(--cones "$cones")
     [ -n "$iter" ] && args+=(--iterations "$iter")
+    args+=("${extra[@]}")
     [ "${SQ_BENCH_MAP:-0}" = 1 ] && args+=(--map "$mesh")
     read -r rc secs mb < <(timed "$tmp/sq" "$bin" "${args[@]}")
     ctag=$([ -n "$cones" ] && basename "$cones" || echo field)
