@@ -10,7 +10,6 @@
 #include "sq_clock.h"
 #include "sq_map_internal.h"
 #include "sq_map_untangle.h"
-#include "sq_predicates.h"
 
 typedef struct build {
     const sq_mesh *m;   /* the input                                         */
