@@ -204,7 +204,7 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
     else if (s->map_from_rotations)
         printf("map           on the mesh, from the field's rotations: %u seam edges, %u triangles\n"
                "              untangled in %u iterations, %.2f s\n",
-               s->rotations.seam_edges, s->rotations.flipped_conformal, s->rotations.iterations, s->t_rotations);
+               s->rotations.seam_edges, s->rotations.flipped_start, s->rotations.iterations, s->t_rotations);
     else {
         if (s->t_rotations > 0)
             printf("map           on the mesh: not valid (%s), %.2f s\n", s->rotations.why, s->t_rotations);
@@ -271,7 +271,7 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     printf(",\n  \"map_on_mesh\": {\"tried\": %s, \"valid\": %s, \"seam_edges\": %u, \"flipped\": %u, "
            "\"untangle_iterations\": %u, \"flipped_after\": %u, \"seconds\": %.6f, \"why\": ",
            s->t_rotations > 0 ? "true" : "false", s->map_from_rotations ? "true" : "false",
-           s->rotations.seam_edges, s->rotations.flipped_conformal, s->rotations.iterations,
+           s->rotations.seam_edges, s->rotations.flipped_start, s->rotations.iterations,
            s->rotations.flipped_after, s->t_rotations);
     sq_json_string(stdout, s->rotations.why);
     printf("}");

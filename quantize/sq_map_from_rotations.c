@@ -213,8 +213,7 @@ static sq_status field_aligned(build *X, double *z, sq_error *err)
         double th = X->phi[f] * 1.57079632679489661923, ct = scale[f] * cos(th), sn = scale[f] * sin(th);
         double T[4] = {ct, sn, -sn, ct}, J[4], g[6], H[36];
         double fu[6];
-        for (int c = 0; c < 3; c++)
-            fu[2 * c] = uv[2 * (3 * (size_t)f + c)], fu[2 * c + 1] = uv[2 * (3 * (size_t)f + c) + 1];
+        sq_face_uv(mc, uv, f, fu);
         sq_sd_jacobian(F, fu, J);
         for (int c1 = 0; c1 < 3; c1++)
             for (int a1 = 0; a1 < 2; a1++) {
@@ -242,7 +241,8 @@ static int normalize_area(const build *X, double *z)
     sq_uv_basis_eval(&X->B, z, uv);
     double A = 0;
     for (uint32_t f = 0; f < mc->nf; f++) {
-        const double *p = uv + 6 * (size_t)f;
+        double p[6];
+        sq_face_uv(mc, uv, f, p);
         A += 0.5 * ((p[2] - p[0]) * (p[5] - p[1]) - (p[3] - p[1]) * (p[4] - p[0]));
     }
     free(uv);
@@ -342,22 +342,12 @@ sq_status sq_map_from_rotations(const sq_mesh *m, const int32_t *valence, const 
     if ((st = rotations(&X, turn, rep, &ok, err)) || !ok) goto done;
     if ((st = sq_uv_basis_free_translations_seams(&X.S, X.seam, &X.B, err))) goto done;
     /* the surface at area 1 */
-    double area = 0;
-    for (uint32_t f = 0; f < mc->nf; f++) {
-        const double *p0 = mc->pos + 3 * (size_t)mc->he_vert[3 * f], *p1 = mc->pos + 3 * (size_t)mc->he_vert[3 * f + 1],
-                     *p2 = mc->pos + 3 * (size_t)mc->he_vert[3 * f + 2];
-        sq_sd_prepare(p0, p1, p2, 1.0, &X.F[f]);
-        area += X.F[f].area;
-    }
+    double area = sq_sd_surface_area(mc);
     if (!(area > 0)) {
         snprintf(rep->why, sizeof rep->why, "the surface has no area");
         goto done;
     }
-    for (uint32_t f = 0; f < mc->nf; f++) {
-        const double *p0 = mc->pos + 3 * (size_t)mc->he_vert[3 * f], *p1 = mc->pos + 3 * (size_t)mc->he_vert[3 * f + 1],
-                     *p2 = mc->pos + 3 * (size_t)mc->he_vert[3 * f + 2];
-        sq_sd_prepare(p0, p1, p2, 1 / sqrt(area), &X.F[f]);
-    }
+    sq_sd_surface(mc, 1 / sqrt(area), X.F);
     z = malloc(((size_t)X.B.nz + 1) * sizeof *z);
     uv = malloc(X.B.ncoord * sizeof *uv);
     if (!z || !uv) {
@@ -370,12 +360,12 @@ sq_status sq_map_from_rotations(const sq_mesh *m, const int32_t *valence, const 
         snprintf(rep->why, sizeof rep->why, "the conformal map has no positive area");
         goto done;
     }
-    rep->seconds_conformal = sq_now() - t1;
+    rep->seconds_fit = sq_now() - t1;
     t1 = sq_now();
     sq_untangle_result ur;
     if ((st = sq_map_untangle(mc, &X.B, X.F, z, max_it, &ur, err))) goto done;
     rep->seconds_untangle = sq_now() - t1;
-    rep->flipped_conformal = ur.flipped_before;
+    rep->flipped_start = ur.flipped_before;
     rep->flipped_after = ur.flipped_after;
     rep->iterations = ur.iterations;
     rep->rounds = ur.rounds;

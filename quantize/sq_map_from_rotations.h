@@ -49,11 +49,11 @@ typedef struct sq_rotation_map_options {
 typedef struct sq_rotation_map_report {
     int valid;                 /* 1: out holds a map that passed every check   */
     uint32_t seam_edges;       /* edges of the cut graph                       */
-    uint32_t flipped_conformal; /* triangles not positive in the conformal map */
+    uint32_t flipped_start;    /* triangles not positive in the field fit (step 2) */
     uint32_t iterations;       /* untangling Newton iterations                 */
     uint32_t rounds;           /* values of the regularization epsilon         */
     uint32_t flipped_after;    /* triangles not positive after untangling      */
-    double seconds_conformal, seconds_untangle, seconds;
+    double seconds_fit, seconds_untangle, seconds;
     char why[200];             /* why no map was returned                      */
 } sq_rotation_map_report;
 

@@ -41,13 +41,6 @@
  * 13 valid maps, 0.1 and 0.5 give 11. */
 #define EPS_START 0.02
 
-static void face_uv(const sq_mesh *m, const double *he_uv, uint32_t f, double uv[6])
-{
-    uint32_t h = m->f_he[f];
-    for (int c = 0; c < 3; c++, h = m->he_next[h])
-        uv[2 * c] = he_uv[2 * (size_t)h], uv[2 * c + 1] = he_uv[2 * (size_t)h + 1];
-}
-
 /* chi(d, eps), accurate for d << 0 too */
 static double chi(double d, double eps)
 {
@@ -136,7 +129,7 @@ static double total_energy(const sq_mesh *m, const sq_sd_face *F, const double *
     for (uint32_t f = 0; f < m->nf; f++) {
         if (F[f].area == 0) continue;
         double uv[6];
-        face_uv(m, he_uv, f, uv);
+        sq_face_uv(m, he_uv, f, uv);
         E += F[f].area * face_energy(&F[f], uv, eps);
     }
     return E;
@@ -150,7 +143,7 @@ static double min_det(const sq_mesh *m, const sq_sd_face *F, const double *he_uv
     for (uint32_t f = 0; f < m->nf; f++) {
         if (F[f].area == 0) continue;
         double uv[6], J[4];
-        face_uv(m, he_uv, f, uv);
+        sq_face_uv(m, he_uv, f, uv);
         sq_sd_jacobian(&F[f], uv, J);
         double d = J[0] * J[3] - J[1] * J[2];
         if (!(d > 0)) ++*bad;
@@ -188,7 +181,7 @@ sq_status sq_map_untangle(const sq_mesh *m, const sq_uv_basis *B, const sq_sd_fa
             for (uint32_t f = 0; f < m->nf; f++) {
                 if (F[f].area == 0) continue;
                 double fu[6], g[6], H[36];
-                face_uv(m, uv, f, fu);
+                sq_face_uv(m, uv, f, fu);
                 face_grad_hess(&F[f], fu, eps, g, H);
                 sq_zsys_add_face(&S, f, g, H, gz);
             }

@@ -120,21 +120,6 @@ typedef struct opt_ctx {
 #define RELAX_BOUND 100.0
 #define RELAX_BOUND_REFERENCES 1e4
 
-static void face_corners(const sq_mesh *m, uint32_t f, uint32_t hc[3])
-{
-    hc[0] = m->f_he[f];
-    hc[1] = m->he_next[hc[0]];
-    hc[2] = m->he_next[hc[1]];
-}
-
-static void face_uv(const sq_mesh *m, const double *he_uv, uint32_t f, double uv[6])
-{
-    uint32_t hc[3];
-    face_corners(m, f, hc);
-    for (int c = 0; c < 3; c++)
-        uv[2 * c] = he_uv[2 * (size_t)hc[c]], uv[2 * c + 1] = he_uv[2 * (size_t)hc[c] + 1];
-}
-
 /* Holds every unknown corner h depends on (hold_face: of all three). */
 static void hold_corner(opt_ctx *X, uint32_t h)
 {
@@ -145,7 +130,7 @@ static void hold_corner(opt_ctx *X, uint32_t h)
 static void hold_face(opt_ctx *X, uint32_t f)
 {
     uint32_t hc[3];
-    face_corners(X->m, f, hc);
+    sq_face_corners(X->m, f, hc);
     for (int c = 0; c < 3; c++) hold_corner(X, hc[c]);
 }
 
@@ -156,7 +141,7 @@ static double energy(const opt_ctx *X, const double *he_uv, double *max)
     double sum = 0, worst = 0;
     for (uint32_t f = 0; f < X->m->nf; f++) {
         double uv[6];
-        face_uv(X->m, he_uv, f, uv);
+        sq_face_uv(X->m, he_uv, f, uv);
         if (X->E[f].area == 0) {
             /* left out of the energy, but it must stay positive */
             if (!(sq_orient2d(uv, uv + 2, uv + 4) > 0)) return INFINITY;
@@ -175,7 +160,7 @@ static int all_positive(const sq_mesh *m, const double *he_uv)
 {
     for (uint32_t f = 0; f < m->nf; f++) {
         double uv[6];
-        face_uv(m, he_uv, f, uv);
+        sq_face_uv(m, he_uv, f, uv);
         if (sq_orient2d(uv, uv + 2, uv + 4) <= 0) return 0;
     }
     return 1;
@@ -188,7 +173,7 @@ static void assemble(opt_ctx *X, const double *he_uv, double *gz)
     for (uint32_t f = 0; f < X->m->nf; f++) {
         if (X->E[f].area == 0) continue;
         double uv[6], g[6], H[36];
-        face_uv(X->m, he_uv, f, uv);
+        sq_face_uv(X->m, he_uv, f, uv);
         sq_sd_grad_hess(&X->E[f], uv, X->weight, g, H);
         sq_zsys_add_face(&X->sys, f, g, H, gz);
     }
@@ -197,25 +182,19 @@ static void assemble(opt_ctx *X, const double *he_uv, double *gz)
 void sq_optimize_energy(const sq_map *M, double *mean, double *max)
 {
     const sq_mesh *m = &M->mesh;
-    double a3 = 0, auv = 0, sum = 0, worst = 0;
+    double a3 = sq_sd_surface_area(m), auv = 0, sum = 0, worst = 0;
     for (uint32_t f = 0; f < m->nf; f++) {
-        uint32_t hc[3];
-        face_corners(m, f, hc);
         double uv[6];
-        face_uv(m, M->he_uv, f, uv);
+        sq_face_uv(m, M->he_uv, f, uv);
         auv += 0.5 * ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[3] - uv[1]) * (uv[4] - uv[0]));
-        sq_sd_face F;
-        if (sq_sd_prepare(m->pos + 3 * (size_t)m->he_vert[hc[0]], m->pos + 3 * (size_t)m->he_vert[hc[1]],
-                          m->pos + 3 * (size_t)m->he_vert[hc[2]], 1.0, &F))
-            a3 += F.area;
     }
     double scale = a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0;
     a3 = 0;
     for (uint32_t f = 0; f < m->nf; f++) {
         uint32_t hc[3];
-        face_corners(m, f, hc);
+        sq_face_corners(m, f, hc);
         double uv[6];
-        face_uv(m, M->he_uv, f, uv);
+        sq_face_uv(m, M->he_uv, f, uv);
         sq_sd_face F;
         if (!sq_sd_prepare(m->pos + 3 * (size_t)m->he_vert[hc[0]], m->pos + 3 * (size_t)m->he_vert[hc[1]],
                            m->pos + 3 * (size_t)m->he_vert[hc[2]], scale, &F))
@@ -342,7 +321,7 @@ static uint32_t reference_update(opt_ctx *X, const double *he_uv, double K)
     double total = 0;
     for (uint32_t f = 0; f < X->m->nf; f++) {
         double uv[6];
-        face_uv(X->m, he_uv, f, uv);
+        sq_face_uv(X->m, he_uv, f, uv);
         if (sq_sd_reference(&X->F[f], uv, K, &X->R[f]) < 1.0) n++;
         if (X->R[f].area > 0 && X->R[f].area < X->floor_r) X->R[f].area = X->floor_r;
         total += X->R[f].area;
@@ -406,26 +385,15 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
     memcpy(orig_rot, M->he_rot, m->nh);
 
     /* the surface scaled to the map's area */
-    double a3 = 0, auv = 0;
+    double auv = 0, total = 0;
     for (uint32_t f = 0; f < m->nf; f++) {
-        uint32_t hc[3];
-        face_corners(m, f, hc);
         double c6[6];
-        face_uv(m, M->he_uv, f, c6);
+        sq_face_uv(m, M->he_uv, f, c6);
         auv += 0.5 * ((c6[2] - c6[0]) * (c6[5] - c6[1]) - (c6[3] - c6[1]) * (c6[4] - c6[0]));
-        sq_sd_face F;
-        if (sq_sd_prepare(m->pos + 3 * (size_t)m->he_vert[hc[0]], m->pos + 3 * (size_t)m->he_vert[hc[1]],
-                          m->pos + 3 * (size_t)m->he_vert[hc[2]], 1.0, &F))
-            a3 += F.area;
     }
-    double scale = a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0, total = 0;
-    for (uint32_t f = 0; f < m->nf; f++) {
-        uint32_t hc[3];
-        face_corners(m, f, hc);
-        sq_sd_prepare(m->pos + 3 * (size_t)m->he_vert[hc[0]], m->pos + 3 * (size_t)m->he_vert[hc[1]],
-                      m->pos + 3 * (size_t)m->he_vert[hc[2]], scale, &X.F[f]);
-        total += X.F[f].area;
-    }
+    double a3 = sq_sd_surface_area(m);
+    sq_sd_surface(m, a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0, X.F);
+    for (uint32_t f = 0; f < m->nf; f++) total += X.F[f].area;
     /* step 0: the extreme triangles relaxed by local moves that Newton's
      * rounded steps cannot make (sq_optimize_relax.c; RELAX_BOUND). The
      * relaxed map is exact and valid: it is the start, and what comes back
@@ -494,10 +462,10 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         }
         for (uint32_t f = 0; f < m->nf; f++) {
             uint32_t hc[3];
-            face_corners(m, f, hc);
+            sq_face_corners(m, f, hc);
             if (!vseam[m->he_vert[hc[0]]] && !vseam[m->he_vert[hc[1]]] && !vseam[m->he_vert[hc[2]]]) continue;
             double a6[6];
-            face_uv(m, uv, f, a6);
+            sq_face_uv(m, uv, f, a6);
             double l0 = hypot(a6[2] - a6[0], a6[3] - a6[1]), l1 = hypot(a6[4] - a6[2], a6[5] - a6[3]);
             double l2 = hypot(a6[0] - a6[4], a6[1] - a6[5]);
             double cross = (a6[2] - a6[0]) * (a6[5] - a6[1]) - (a6[3] - a6[1]) * (a6[4] - a6[0]);
@@ -526,7 +494,7 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
          * they leave the energy, the rest moves. */
         for (uint32_t f = 0; f < m->nf; f++) {
             double a6[6];
-            face_uv(m, uv, f, a6);
+            sq_face_uv(m, uv, f, a6);
             const double psi = sq_sd_psi(&X.F[f], a6);
             /* an infinite energy (a triangle flat in 3D or in doubles) is
              * held even where nothing finite is (hold_above infinite) */
@@ -574,8 +542,8 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         double amax = INFINITY;
         for (uint32_t f = 0; f < m->nf; f++) {
             double a6[6], b6[6];
-            face_uv(m, uv, f, a6);
-            face_uv(m, duv, f, b6);
+            sq_face_uv(m, uv, f, a6);
+            sq_face_uv(m, duv, f, b6);
             amax = fmin(amax, sq_sd_max_step(a6, b6));
         }
         double alpha = fmin(1.0, 0.8 * amax), e_new = INFINITY;

@@ -50,6 +50,30 @@ int sq_sd_prepare(const double *p0, const double *p1, const double *p2, double s
     return 1;
 }
 
+static int face_frame(const sq_mesh *m, uint32_t f, double scale, sq_sd_face *F)
+{
+    uint32_t hc[3];
+    sq_face_corners(m, f, hc);
+    const double *P = m->pos;
+    return sq_sd_prepare(P + 3 * (size_t)m->he_vert[hc[0]], P + 3 * (size_t)m->he_vert[hc[1]],
+                         P + 3 * (size_t)m->he_vert[hc[2]], scale, F);
+}
+
+double sq_sd_surface_area(const sq_mesh *m)
+{
+    double a = 0;
+    for (uint32_t f = 0; f < m->nf; f++) {
+        sq_sd_face F;
+        if (face_frame(m, f, 1.0, &F)) a += F.area;
+    }
+    return a;
+}
+
+void sq_sd_surface(const sq_mesh *m, double scale, sq_sd_face *F)
+{
+    for (uint32_t f = 0; f < m->nf; f++) face_frame(m, f, scale, &F[f]);
+}
+
 static void jacobian(const sq_sd_face *F, const double uv[6], double J[4])
 {
     /* J[a][b] = sum_c uv[c][a] G[c][b]; vec order (00, 01, 10, 11) */

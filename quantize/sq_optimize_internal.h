@@ -20,6 +20,29 @@ typedef struct sq_sd_face {
 int sq_sd_prepare(const double *p0, const double *p1, const double *p2, double scale,
                   sq_sd_face *F);
 
+/* The halfedges of face f, its first (f_he[f]) first: the corners in F's
+ * order; sq_face_uv: their UVs in he_uv (u0 v0 u1 v1 u2 v2). */
+static inline void sq_face_corners(const sq_mesh *m, uint32_t f, uint32_t hc[3])
+{
+    hc[0] = m->f_he[f];
+    hc[1] = m->he_next[hc[0]];
+    hc[2] = m->he_next[hc[1]];
+}
+
+static inline void sq_face_uv(const sq_mesh *m, const double *he_uv, uint32_t f, double uv[6])
+{
+    uint32_t hc[3];
+    sq_face_corners(m, f, hc);
+    for (int c = 0; c < 3; c++)
+        uv[2 * c] = he_uv[2 * (size_t)hc[c]], uv[2 * c + 1] = he_uv[2 * (size_t)hc[c] + 1];
+}
+
+/* sq_sd_surface_area: the total area of m's triangles (those that
+ * sq_sd_prepare takes); sq_sd_surface: their frames (F: nf, corners from
+ * f_he[f] on) with the surface scaled by `scale`. */
+double sq_sd_surface_area(const sq_mesh *m);
+void sq_sd_surface(const sq_mesh *m, double scale, sq_sd_face *F);
+
 /* psi = |J|^2 + |J^-1|^2 of the corners uv (u0 v0 u1 v1 u2 v2); INFINITY
  * if the map's triangle is not positive in doubles; 0 if area is 0. */
 double sq_sd_psi(const sq_sd_face *F, const double uv[6]);

@@ -22,13 +22,6 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static void face_corners(const sq_mesh *m, uint32_t f, uint32_t hc[3])
-{
-    hc[0] = m->f_he[f];
-    hc[1] = m->he_next[hc[0]];
-    hc[2] = m->he_next[hc[1]];
-}
-
 sq_status sq_zsys_init(sq_zsys *S, const sq_mesh *m, const sq_uv_basis *B, sq_error *err)
 {
     memset(S, 0, sizeof *S);
@@ -51,7 +44,7 @@ sq_status sq_zsys_init(sq_zsys *S, const sq_mesh *m, const sq_uv_basis *B, sq_er
     for (int pass = 0; pass < 2; pass++) {
         for (uint32_t f = 0; f < m->nf; f++) {
             uint32_t hc[3];
-            face_corners(m, f, hc);
+            sq_face_corners(m, f, hc);
             uint32_t n = 0;
             for (int c = 0; c < 3; c++)
                 for (int a = 0; a < 2; a++) {
@@ -147,7 +140,7 @@ void sq_zsys_add_face(sq_zsys *S, uint32_t f, const double g[6], const double H[
 {
     const sq_uv_basis *B = S->B;
     uint32_t hc[3];
-    face_corners(S->m, f, hc);
+    sq_face_corners(S->m, f, hc);
     for (int k1 = 0; k1 < 6; k1++) {
         size_t r1 = 2 * (size_t)hc[k1 / 2] + k1 % 2;
         for (uint32_t j1 = B->row_off[r1]; j1 < B->row_off[r1 + 1]; j1++) {
