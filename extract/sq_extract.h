@@ -148,21 +148,30 @@ sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, const sq_mesh *m, con
  * there. Such a quad need not be folded in the referee's sense (its two
  * triangulations may agree) but lies upside down: a flipped face. (A quad
  * with only some corners facing away is non-convex or twisted, a matter
- * of quality: its scaled Jacobian is <= 0.) The surface normal at a corner
- * is sq_mesh_normal_at (core/sq_mesh.h) of the normalized vertex normals
- * vn of m (sq_mesh_vertex_normals), so a sliver of the map's refinement,
- * whose own normal is noise, does not decide it.
+ * of quality: its scaled Jacobian is <= 0.) A corner faces the surface
+ * when it agrees with either of two normals there: the normal of the
+ * triangle of m that holds it (skipped where that triangle is too thin to
+ * have one), or the interpolation of m's vertex normals vn
+ * (sq_mesh_vertex_normals, sq_mesh_normal_at in core/sq_mesh.h). The
+ * first decides on a coarse mesh with sharp features, where vertex
+ * normals can lean more than 90 degrees from a triangle they belong to
+ * (libigl/decimated-knight); the second on a refinement's slivers, whose
+ * own normal is noise.
  * sq_quad_turn_margin: n[k] the unit surface normal at corner p[k]; the
  * largest over the corners of the cosine between the corner's normal and
  * n[k] (0 for a corner whose triangle is below 1e-6 of the quad's largest
  * corner triangle: its direction is rounding noise): < 0 exactly when the
- * quad is turned.
- * sq_quad_mesh_count_turned: the turned quads of Q on the triangle mesh m
- * (vn its sq_mesh_vertex_normals), vertex v at barycentric
- * vert_bary[3v..] in face vert_face[v] of m; *first (may be NULL) the
- * first (0-based, UINT32_MAX: none), flags (nq, may be NULL) 1 at each.
- * O(nq). */
+ * quad is turned against those normals.
+ * sq_quad_turn_margin_on: the larger of the margins with the two normals
+ * of m at the corners, corner k at barycentric bary[k] in face[k] of m:
+ * < 0 exactly when the quad is turned.
+ * sq_quad_mesh_count_turned: the turned quads of Q on the triangle mesh m,
+ * vertex v at barycentric vert_bary[3v..] in face vert_face[v] of m;
+ * *first (may be NULL) the first (0-based, UINT32_MAX: none), flags (nq,
+ * may be NULL) 1 at each. O(nq). */
 double sq_quad_turn_margin(const double *const p[4], const double *const n[4]);
+double sq_quad_turn_margin_on(const sq_mesh *m, const double *vn, const double *const p[4], const uint32_t face[4],
+                              const double *const bary[4]);
 sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, const double *vn,
                                     const uint32_t *vert_face, const double *vert_bary, uint32_t *count,
                                     uint32_t *first, uint8_t *flags, sq_error *err);

@@ -40,20 +40,16 @@
 
 #define SQ_UNTANGLE_ROUNDS 60
 
-/* Quad f's turn margin on the surface (sq_quad_turn_margin; vn: the map
- * mesh's vertex normals, interpolated at each corner's loc_face and
- * loc_bary). */
+/* Quad f's turn margin on the map's mesh (sq_quad_turn_margin_on at each
+ * corner's loc_face and loc_bary; vn: the mesh's vertex normals). */
 static double turn_margin(const sq_map *M, const sq_quad_mesh *Q, const double *vn, uint32_t f)
 {
     const uint32_t *q = Q->quad + 4 * (size_t)f;
-    const double *p[4], *n[4];
-    double nrm[4][3];
-    for (int k = 0; k < 4; k++) {
-        p[k] = Q->pos + 3 * (size_t)q[k];
-        sq_mesh_normal_at(&M->mesh, vn, Q->loc_face[q[k]], Q->loc_bary + 3 * (size_t)q[k], nrm[k]);
-        n[k] = nrm[k];
-    }
-    return sq_quad_turn_margin(p, n);
+    const double *p[4], *b[4];
+    uint32_t face[4];
+    for (int k = 0; k < 4; k++)
+        p[k] = Q->pos + 3 * (size_t)q[k], face[k] = Q->loc_face[q[k]], b[k] = Q->loc_bary + 3 * (size_t)q[k];
+    return sq_quad_turn_margin_on(&M->mesh, vn, p, face, b);
 }
 
 /* The smaller of quad f's fold margin and its turn margin: negative where

@@ -7,11 +7,14 @@
  * valence on a saddle (mpz/homer's valence-6 cones) or across a thin part,
  * two or three quads whose triangles (each quad split along its shorter
  * diagonal) cut each other, every vertex on the surface. The repair moves
- * the vertices of the quads involved, cones excepted, towards the mean of
- * their edge neighbours, projected back onto the input (closest point),
+ * the vertices of the quads involved, cones included, towards the mean of
+ * their edge neighbours (at a sharp tip, libigl/decimated-knight's ears,
+ * the quads around a valence-3 cone cut each other until the cone moves;
+ * the referee matches irregular vertices to cones by count, not by
+ * place), projected back onto the input (closest point),
  * each move halved until no quad around the vertex is folded or turned
  * over on the surface that was not (sq_quad_fold_margin,
- * sq_quad_turn_margin with the surface normals at the corners' closest
+ * sq_quad_turn_margin_on with the surface at the corners' closest
  * points); after each round the whole test runs again. A
  * round that does not lower the count widens the moved set by a ring. The
  * positions with the fewest pairs are kept; the caller fails the run if
@@ -110,25 +113,24 @@ sq_status sq_remesh_quad_intersections(const sq_quad_mesh *Q, uint64_t *pairs, u
     return st;
 }
 
-/* The smallest turn margin (sq_quad_turn_margin: < 0 for a quad turned
- * over on the surface) of the quads around v, each corner's surface
- * normal taken at its closest point on m. */
+/* The smallest turn margin (sq_quad_turn_margin_on: < 0 for a quad turned
+ * over on the surface) of the quads around v, each corner located at its
+ * closest point on m. */
 static double star_worst_turn(const sq_quad_star *S, const sq_quad_mesh *Q, const sq_cp_tree *tree,
                               const sq_mesh *m, const double *vn, uint32_t v)
 {
     double worst = INFINITY;
     for (uint32_t k = S->off[v]; k < S->off[v + 1]; k++) {
         const uint32_t *q = Q->quad + 4 * (size_t)S->quad[k];
-        const double *p[4], *n[4];
-        double nn[4][3];
+        const double *p[4], *b[4];
+        uint32_t face[4];
+        sq_cp_hit hit[4];
         for (int c = 0; c < 4; c++) {
             p[c] = Q->pos + 3 * (size_t)q[c];
-            sq_cp_hit hit;
-            sq_cp_tree_query(tree, p[c], &hit);
-            sq_mesh_normal_at(m, vn, hit.tri, hit.bary, nn[c]);
-            n[c] = nn[c];
+            sq_cp_tree_query(tree, p[c], &hit[c]);
+            face[c] = hit[c].tri, b[c] = hit[c].bary;
         }
-        worst = fmin(worst, sq_quad_turn_margin(p, n));
+        worst = fmin(worst, sq_quad_turn_margin_on(m, vn, p, face, b));
     }
     return worst;
 }
@@ -173,7 +175,7 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
             memcpy(mark, grow, nv);
         }
         for (uint32_t v = 0; v < nv; v++) {
-            if (!mark[v] || Q->valence[v] != 4) continue;
+            if (!mark[v]) continue;
             double *p = Q->pos + 3 * (size_t)v, old[3], tgt[3] = {0, 0, 0};
             memcpy(old, p, sizeof old);
             uint32_t deg = S.off[v + 1] - S.off[v];

@@ -7,7 +7,10 @@
  * definitions (check_quad.py [3]), worked out by hand here. Two quads side
  * by side on a plane, one of them listed clockwise: turned over on the
  * surface (not folded: it is flat), refused; the same pair on the plane
- * seen from below: both turned. */
+ * seen from below: both turned. sq_quad_turn_margin_on: a quad inside a
+ * triangle whose vertex normals lean away from it (a coarse mesh's sharp
+ * tip) faces the surface by the triangle's own normal; in a triangle too
+ * thin to have a normal, only the vertex normals decide. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -153,6 +156,40 @@ static void test_turned_quad(void **state)
     assert_int_equal(s.first_turned, 0);
 }
 
+/* the quad (0,0) (1,0) (1,1) (0,1) at z = 0, counterclockwise or not,
+ * inside triangle 0 of plane(), with vertex normals vn */
+static double margin_on(const sq_mesh *m, const double *vn, int clockwise)
+{
+    static const double c[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    const double *p[4], *b[4];
+    static const double bary[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    uint32_t face[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 4; k++) p[k] = c[clockwise ? 3 - k : k], b[k] = bary;
+    return sq_quad_turn_margin_on(m, vn, p, face, b);
+}
+
+static void test_turn_margin_two_normals(void **state)
+{
+    (void)state;
+    sq_mesh m;
+    double mpos[9];
+    uint32_t next[3], vert[3], fhe[1];
+    plane(&m, mpos, next, vert, fhe, 0);
+    double up[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1}, down[9] = {0, 0, -1, 0, 0, -1, 0, 0, -1};
+    /* vertex normals along the face's: one verdict */
+    assert_true(margin_on(&m, up, 0) > 0.99);
+    assert_true(margin_on(&m, up, 1) < -0.99);
+    /* vertex normals leaning away (a sharp tip): either normal that
+     * agrees is enough, so the counterclockwise quad faces the surface by
+     * the face's own normal, and the clockwise one by the vertex normals */
+    assert_true(margin_on(&m, down, 0) > 0.99);
+    assert_true(margin_on(&m, down, 1) > 0.99);
+    /* a triangle too thin for a normal: the vertex normals alone */
+    mpos[6] = 10.0, mpos[7] = -10.0 + 1e-12; /* corner 2 next to the first side */
+    assert_true(margin_on(&m, up, 0) > 0.99);
+    assert_true(margin_on(&m, down, 0) < -0.99);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -161,6 +198,7 @@ int main(void)
         cmocka_unit_test(test_coincident_corners),
         cmocka_unit_test(test_zero_area),
         cmocka_unit_test(test_turned_quad),
+        cmocka_unit_test(test_turn_margin_two_normals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
