@@ -72,6 +72,9 @@ typedef struct smoother {
     const double *spos;
     unsigned char *untangle;
     double *base_angle;         /* 4*nq: corner angles at the solve's start    */
+    double *old_sjac, *old_ratio; /* nq: each quad's scaled Jacobian and edge  */
+                                /* ratio in the accepted state (revert_pass)   */
+    unsigned char *dirty;       /* nq: to be judged again (revert_pass)        */
     sq_smooth_ctx ctx;
 } smoother;
 
@@ -168,29 +171,46 @@ static int quality_not_worse(const sq_quad_quality *n, const sq_quad_quality *o)
  * or give an edge ratio above its own + tau gets its four vertices reverted
  * to the accepted state; repeated until no quad is reverted (a revert
  * changes the neighbours' quads). revert_worsened: tau = infinity, then
- * 1, 1/2, ... (then 0) while the mean edge ratio is above the current one. */
+ * 1, 1/2, ... (then 0) while the mean edge ratio is above the current one.
+ * The first round judges every quad with a moved corner, the later ones
+ * only the quads of a vertex reverted since (the others are as they were
+ * when accepted): the same reverts as judging all of them every round.
+ * The accepted state's figures are s->old_sjac and s->old_ratio
+ * (set_old_shapes). */
+static void set_old_shapes(smoother *s)
+{
+    for (uint32_t q = 0; q < s->nq; q++) {
+        sq_quad_quality qo;
+        sq_quad_quality_compute_shapes(s->pos, 1, s->quads + 4 * (size_t)q, &qo);
+        s->old_sjac[q] = qo.sjac_min, s->old_ratio[q] = qo.edge_ratio_mean;
+    }
+}
+
 static void revert_pass(smoother *s, const sq_quad_quality *g, double tau)
 {
+    memset(s->dirty, 1, s->nq);
     for (int round = 0; round < 64; round++) {
         uint32_t reverted = 0;
         for (uint32_t q = 0; q < s->nq; q++) {
+            if (!s->dirty[q]) continue;
+            s->dirty[q] = 0;
             const uint32_t *f = s->quads + 4 * (size_t)q;
             int moved = 0;
             for (int k = 0; k < 4; k++)
                 moved |= memcmp(s->cand + 3 * (size_t)f[k], s->pos + 3 * (size_t)f[k], 3 * sizeof(double)) != 0;
             if (!moved) continue;
-            sq_quad_quality qo, qn;
-            sq_quad_quality_compute(s->pos, 1, f, &qo);
-            sq_quad_quality_compute(s->cand, 1, f, &qn);
+            sq_quad_quality qn;
+            sq_quad_quality_compute_shapes(s->cand, 1, f, &qn);
             int bad = qn.folded || !(qn.fold_margin_min >= s->threshold[q]) ||
-                      !(qn.sjac_min >= fmin(qo.sjac_min, g->sjac_min)) ||
-                      !(qn.edge_ratio_mean <= qo.edge_ratio_mean + tau);
+                      !(qn.sjac_min >= fmin(s->old_sjac[q], g->sjac_min)) ||
+                      !(qn.edge_ratio_mean <= s->old_ratio[q] + tau);
             if (!bad) continue;
             for (int k = 0; k < 4; k++) {
                 uint32_t v = f[k];
                 memcpy(s->cand + 3 * (size_t)v, s->pos + 3 * (size_t)v, 3 * sizeof(double));
                 memcpy(s->cand_bary + 3 * (size_t)v, s->vbary + 3 * (size_t)v, 3 * sizeof(double));
                 s->cand_tri[v] = s->vtri[v];
+                for (uint32_t j = s->vq_off[v]; j < s->vq_off[v + 1]; j++) s->dirty[s->vq[j]] = 1;
             }
             reverted++;
         }
@@ -203,7 +223,7 @@ static void revert_worsened(smoother *s, const sq_quad_quality *g)
     revert_pass(s, g, INFINITY);
     for (double tau = 1.0;; tau *= 0.5) {
         sq_quad_quality qn;
-        sq_quad_quality_compute(s->cand, s->nq, s->quads, &qn);
+        sq_quad_quality_compute_shapes(s->cand, s->nq, s->quads, &qn);
         if (qn.edge_ratio_mean <= g->edge_ratio_mean) return;
         if (tau < 1e-4) tau = 0.0;
         revert_pass(s, g, tau);
@@ -326,7 +346,7 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
     if (sum.successful_steps == 0) return 2;
 
     sq_quad_quality q_old;
-    if (smoothing) sq_quad_quality_compute(s->pos, s->nq, s->quads, &q_old);
+    if (smoothing) sq_quad_quality_compute(s->pos, s->nq, s->quads, &q_old), set_old_shapes(s);
     double lambda = 1.0;
     for (int bt = 0; bt <= MAX_BACKTRACK; bt++, lambda *= 0.5) {
         for (uint32_t v = 0; v < s->nv; v++) {
@@ -428,6 +448,9 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     s.snv = snv, s.spos = spos;
     s.untangle = calloc(nq, 1);
     s.base_angle = malloc(4 * (size_t)nq * sizeof(double));
+    s.old_sjac = malloc((size_t)nq * sizeof(double));
+    s.old_ratio = malloc((size_t)nq * sizeof(double));
+    s.dirty = malloc(nq);
     s.target = malloc(4 * (size_t)nq * sizeof(double));
     s.ideal_log = malloc(4 * (size_t)nq * sizeof(double));
     double *vnormal = calloc(3 * (size_t)snv, sizeof(double));
@@ -436,7 +459,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     if (!tri_normal || !base || !s.vtri || !s.frame || !s.h || !s.ref_normal || !s.threshold || !s.margin ||
         !s.x || !s.cand || !s.cand_tri || !s.con_quad || !s.res_off || !s.res_param || !s.res_dim ||
         !s.untangle || !s.base_angle || !s.pin_v || !s.pin_s || !s.pinned || !s.vq_off || !s.vq || !s.target || !s.ideal_log ||
-        !vnormal || !s.vbary || !s.cand_bary) {
+        !vnormal || !s.vbary || !s.cand_bary || !s.old_sjac || !s.old_ratio || !s.dirty) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory for %u vertices", nv);
         goto done;
     }
@@ -599,7 +622,7 @@ done:
     free(tri_normal), free(base), free(s.vtri), free(s.frame), free(s.h), free(s.ref_normal);
     free(s.threshold), free(s.margin), free(s.x), free(s.cand), free(s.cand_tri), free(s.con_quad);
     free(s.res_off), free(s.res_param), free(s.res_dim), free(s.untangle), free(s.pin_v), free(s.pin_s);
-    free(s.pinned), free(s.vq_off), free(s.vq), free(s.base_angle);
+    free(s.pinned), free(s.vq_off), free(s.vq), free(s.base_angle), free(s.old_sjac), free(s.old_ratio), free(s.dirty);
     free(vnormal), free(s.vbary), free(s.cand_bary), free(s.target), free(s.ideal_log);
     return st;
 }

@@ -40,6 +40,12 @@ double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2,
 void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads,
                              sq_quad_quality *q);
 
+/* The same without the corner angles (angle_* fields left at 180, 0 and
+ * 0): every other field identical to sq_quad_quality_compute's, at a
+ * fraction of the cost (no atan2). */
+void sq_quad_quality_compute_shapes(const double *pos, uint32_t nq, const uint32_t *quads,
+                                    sq_quad_quality *q);
+
 /* The referee's size figures of quad (p0, p1, p2, p3) (check_quad.py
  * [3]): its area (the mean of its two triangulations') and its shortest
  * edge. */

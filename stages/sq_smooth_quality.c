@@ -45,7 +45,9 @@ void sq_quad_size(const double *p0, const double *p1, const double *p2, const do
                           fmin(sqrt(dot3(e[2], e[2])), sqrt(dot3(e[3], e[3]))));
 }
 
-void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads, sq_quad_quality *q)
+/* Both: the angles (atan2 per corner, most of the cost) only when asked;
+ * every other figure is computed the same way either way. */
+static void quality(const double *pos, uint32_t nq, const uint32_t *quads, int angles, sq_quad_quality *q)
 {
     memset(q, 0, sizeof *q);
     q->nq = nq;
@@ -79,10 +81,12 @@ void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *qua
             double c[3];
             cross3(u, w, c);
             c[0] = -c[0], c[1] = -c[1], c[2] = -c[2];
-            double ang = atan2(sqrt(dot3(c, c)), -dot3(u, w)) * (180.0 / 3.14159265358979323846);
-            if (ang < q->angle_min_deg) q->angle_min_deg = ang;
-            if (ang > q->angle_max_deg) q->angle_max_deg = ang;
-            sum_dev += fabs(ang - 90.0);
+            if (angles) {
+                double ang = atan2(sqrt(dot3(c, c)), -dot3(u, w)) * (180.0 / 3.14159265358979323846);
+                if (ang < q->angle_min_deg) q->angle_min_deg = ang;
+                if (ang > q->angle_max_deg) q->angle_max_deg = ang;
+                sum_dev += fabs(ang - 90.0);
+            }
             double j = nn > 0.0 ? dot3(c, nvec) / (L[k] * L[(k + 3) % 4] * nn) : 0.0;
             if (j < qsj) qsj = j;
         }
@@ -98,4 +102,14 @@ void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *qua
         q->sjac_mean = sum_sj / measured;
         q->edge_ratio_mean = sum_er / measured;
     }
+}
+
+void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads, sq_quad_quality *q)
+{
+    quality(pos, nq, quads, 1, q);
+}
+
+void sq_quad_quality_compute_shapes(const double *pos, uint32_t nq, const uint32_t *quads, sq_quad_quality *q)
+{
+    quality(pos, nq, quads, 0, q);
 }
