@@ -105,7 +105,14 @@ typedef struct sq_zsys {
     double *h_val;
     uint32_t *h_row;     /* the row of every entry (for the solver)          */
     sq_spd *fac;         /* the analyzed factorization                       */
+    size_t *slot_off;    /* nf + 1, or NULL: each face's entries of h_val in */
+    uint32_t *slot;      /* the order sq_zsys_add_face adds them (a cache of */
+                         /* its searches, kept when under SQ_ZSYS_SLOTS)     */
 } sq_zsys;
+
+/* The most cached entry positions (32 MB): faces of maps up to about 200K
+ * triangles; larger ones search the pattern at every assembly. */
+#define SQ_ZSYS_SLOTS (8u << 20)
 
 sq_status sq_zsys_init(sq_zsys *S, const sq_mesh *m, const sq_uv_basis *B, sq_error *err);
 /* The entry (i, j), i >= j, of the pattern. */

@@ -4,13 +4,15 @@
  * The corners are he_uv = c + P z (sq_uv_basis.h). A triangle's gradient g
  * and Hessian H in its six corner coordinates pull back to z as P^T g and
  * P^T H P. The pattern of the sum (lower triangle, CSR by row, columns
- * sorted) is built once from the faces' rows of P; each assembly adds into
- * it; each solve refactors the same symbolic factorization (CHOLMOD,
- * sq_sparse.h). Used by the optimizer (sq_optimize.c) and the untangler
- * (sq_map_untangle.c).
+ * sorted) is built once from the faces' rows of P, with, for each face,
+ * the positions of the entries it adds to (when they fit SQ_ZSYS_SLOTS);
+ * each assembly adds into it; each solve refactors the same symbolic
+ * factorization (CHOLMOD, sq_sparse.h). Used by the optimizer
+ * (sq_optimize.c), the field fit (sq_map_from_rotations.c) and the
+ * untangler (sq_map_untangle.c).
  *
- * Cost: the pattern about 14 entries per pair of unknowns; one sparse
- * Cholesky per solve. */
+ * Cost: the pattern about 14 entries per pair of unknowns, the positions
+ * about 21 per face; one sparse Cholesky per solve. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -102,7 +104,16 @@ sq_status sq_zsys_init(sq_zsys *S, const sq_mesh *m, const sq_uv_basis *B, sq_er
     for (uint32_t i = 0; i < nz; i++) {
         uint32_t *row = fill + cnt[i];
         size_t len = cnt[i + 1] - cnt[i];
-        qsort(row, len, sizeof *row, cmp_u32);
+        if (len <= 64) { /* most rows: a vertex's few dozen, with repeats */
+            for (size_t a = 1; a < len; a++) {
+                uint32_t x = row[a];
+                size_t b = a;
+                for (; b > 0 && row[b - 1] > x; b--) row[b] = row[b - 1];
+                row[b] = x;
+            }
+        } else {
+            qsort(row, len, sizeof *row, cmp_u32);
+        }
         S->h_off[i] = w;
         for (size_t j = 0; j < len; j++)
             if (j == 0 || row[j] != row[j - 1]) fill[w++] = row[j];
@@ -115,6 +126,39 @@ sq_status sq_zsys_init(sq_zsys *S, const sq_mesh *m, const sq_uv_basis *B, sq_er
     if (S->h_col) memcpy(S->h_col, fill, (size_t)w * sizeof *fill);
     free(fill);
     if (!S->h_col || !S->h_val) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (Hessian pattern)");
+    /* each face's entry positions, in sq_zsys_add_face's order */
+    size_t nslot = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        for (uint32_t f = 0; f < m->nf; f++) {
+            uint32_t hc[3];
+            sq_face_corners(m, f, hc);
+            if (pass == 1) S->slot_off[f] = nslot;
+            for (int k1 = 0; k1 < 6; k1++) {
+                size_t r1 = 2 * (size_t)hc[k1 / 2] + k1 % 2;
+                for (uint32_t j1 = B->row_off[r1]; j1 < B->row_off[r1 + 1]; j1++)
+                    for (int k2 = 0; k2 < 6; k2++) {
+                        size_t r2 = 2 * (size_t)hc[k2 / 2] + k2 % 2;
+                        for (uint32_t j2 = B->row_off[r2]; j2 < B->row_off[r2 + 1]; j2++) {
+                            if (B->col[j2] > B->col[j1]) continue;
+                            if (pass == 1) S->slot[nslot] = (uint32_t)(sq_zsys_entry(S, B->col[j1], B->col[j2]) - S->h_val);
+                            nslot++;
+                        }
+                    }
+            }
+        }
+        if (pass == 0) {
+            if (nslot > SQ_ZSYS_SLOTS) return SQ_OK; /* searched instead */
+            S->slot_off = malloc(((size_t)m->nf + 1) * sizeof *S->slot_off);
+            S->slot = malloc((nslot + 1) * sizeof *S->slot);
+            if (!S->slot_off || !S->slot) {
+                free(S->slot_off), free(S->slot);
+                S->slot_off = NULL, S->slot = NULL;
+                return SQ_OK; /* searched instead */
+            }
+            nslot = 0;
+        }
+    }
+    S->slot_off[m->nf] = nslot;
     return SQ_OK;
 }
 
@@ -141,6 +185,25 @@ void sq_zsys_add_face(sq_zsys *S, uint32_t f, const double g[6], const double H[
     const sq_uv_basis *B = S->B;
     uint32_t hc[3];
     sq_face_corners(S->m, f, hc);
+    if (S->slot) { /* the same sums, the positions cached */
+        const uint32_t *sl = S->slot + S->slot_off[f];
+        for (int k1 = 0; k1 < 6; k1++) {
+            size_t r1 = 2 * (size_t)hc[k1 / 2] + k1 % 2;
+            for (uint32_t j1 = B->row_off[r1]; j1 < B->row_off[r1 + 1]; j1++) {
+                uint32_t c1 = B->col[j1];
+                double v1 = B->val[j1];
+                gz[c1] += v1 * g[k1];
+                for (int k2 = 0; k2 < 6; k2++) {
+                    size_t r2 = 2 * (size_t)hc[k2 / 2] + k2 % 2;
+                    for (uint32_t j2 = B->row_off[r2]; j2 < B->row_off[r2 + 1]; j2++) {
+                        if (B->col[j2] > c1) continue;
+                        S->h_val[*sl++] += v1 * H[k1 * 6 + k2] * B->val[j2];
+                    }
+                }
+            }
+        }
+        return;
+    }
     for (int k1 = 0; k1 < 6; k1++) {
         size_t r1 = 2 * (size_t)hc[k1 / 2] + k1 % 2;
         for (uint32_t j1 = B->row_off[r1]; j1 < B->row_off[r1 + 1]; j1++) {
@@ -211,6 +274,8 @@ void sq_zsys_free(sq_zsys *S)
     free(S->h_col);
     free(S->h_val);
     free(S->h_row);
+    free(S->slot_off);
+    free(S->slot);
     sq_spd_free(S->fac);
     memset(S, 0, sizeof *S);
 }
