@@ -157,19 +157,14 @@ sq_status sq_quad_mesh_check_shapes(const sq_quad_mesh *Q, const sq_mesh *m, con
  * normals can lean more than 90 degrees from a triangle they belong to
  * (libigl/decimated-knight); the second on a refinement's slivers, whose
  * own normal is noise.
- * sq_quad_turn_margin: n[k] the unit surface normal at corner p[k]; the
- * largest over the corners of the cosine between the corner's normal and
- * n[k] (0 for a corner whose triangle is below 1e-6 of the quad's largest
- * corner triangle: its direction is rounding noise): < 0 exactly when the
- * quad is turned against those normals.
- * sq_quad_turn_margin_on: the larger of the margins with the two normals
+ * sq_quad_turn_margin (stages/sq_smooth.h) measures it against one normal
+ * per corner; sq_quad_turn_margin_on: the larger of the margins with the two normals
  * of m at the corners, corner k at barycentric bary[k] in face[k] of m:
  * < 0 exactly when the quad is turned.
  * sq_quad_mesh_count_turned: the turned quads of Q on the triangle mesh m,
  * vertex v at barycentric vert_bary[3v..] in face vert_face[v] of m;
  * *first (may be NULL) the first (0-based, UINT32_MAX: none), flags (nq,
  * may be NULL) 1 at each. O(nq). */
-double sq_quad_turn_margin(const double *const p[4], const double *const n[4]);
 double sq_quad_turn_margin_on(const sq_mesh *m, const double *vn, const double *const p[4], const uint32_t face[4],
                               const double *const bary[4]);
 sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, const double *vn,

@@ -2,6 +2,7 @@
 #include <math.h>
 
 #include "sq_extract.h"
+#include "sq_smooth.h"
 
 static void sub3(const double *a, const double *b, double *d)
 {
@@ -13,24 +14,6 @@ static void cross3(const double *a, const double *b, double *c)
     c[0] = a[1] * b[2] - a[2] * b[1];
     c[1] = a[2] * b[0] - a[0] * b[2];
     c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-double sq_quad_turn_margin(const double *const p[4], const double *const n[4])
-{
-    double c[4][3], l[4], lmax = 0.0;
-    for (int k = 0; k < 4; k++) {
-        double e1[3], e2[3];
-        sub3(p[(k + 1) % 4], p[k], e1), sub3(p[(k + 3) % 4], p[k], e2), cross3(e1, e2, c[k]);
-        l[k] = sqrt(c[k][0] * c[k][0] + c[k][1] * c[k][1] + c[k][2] * c[k][2]);
-        if (l[k] > lmax) lmax = l[k];
-    }
-    double best = -1.0;
-    for (int k = 0; k < 4; k++) {
-        /* a corner a millionth of the largest has no direction to speak of */
-        double cs = l[k] > 1e-6 * lmax ? (c[k][0] * n[k][0] + c[k][1] * n[k][1] + c[k][2] * n[k][2]) / l[k] : 0.0;
-        if (cs > best) best = cs;
-    }
-    return best;
 }
 
 /* Triangle f's unit normal, or n left as it is where the triangle is too

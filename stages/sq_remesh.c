@@ -583,6 +583,35 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
             st = sq_remesh_repair_intersections(m, &out->quads, &left, &stats->repair_rounds, err);
             stats->t_verify = sq_now() - t1;
             if (st) goto fail;
+            if (left > 0 && raw && stats->smoothed) {
+                /* the smoothed quads (and the unsmoothed ones, which
+                 * intersect too) cannot be repaired: the unsmoothed ones
+                 * repaired instead, if they can be (vmas/pinion at 1K) */
+                double *smoothed = out->quads.pos;
+                uint64_t found = 0, left_raw = 0;
+                uint32_t rounds = 0;
+                out->quads.pos = raw;
+                st = sq_remesh_quad_intersections(&out->quads, &found, NULL, 0, err);
+                if (!st && found) st = sq_remesh_repair_intersections(m, &out->quads, &left_raw, &rounds, err);
+                stats->t_verify = sq_now() - t1;
+                if (st) {
+                    out->quads.pos = smoothed;
+                    goto fail;
+                }
+                if (left_raw == 0) {
+                    snprintf(stats->smooth_why, sizeof stats->smooth_why,
+                             "%llu pairs of the smoothed quads' triangles intersect after the repair",
+                             (unsigned long long)left);
+                    stats->smoothed = 0;
+                    stats->smooth_reverted = 1;
+                    stats->self_intersections = found;
+                    stats->repair_rounds = rounds;
+                    left = 0;
+                    raw = smoothed; /* freed at the end */
+                } else {
+                    out->quads.pos = smoothed;
+                }
+            }
             stats->repaired = stats->self_intersections - left;
             stats->self_intersections = left;
         }

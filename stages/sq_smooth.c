@@ -74,6 +74,8 @@ typedef struct smoother {
     double *base_angle;         /* 4*nq: corner angles at the solve's start    */
     double *old_sjac, *old_ratio; /* nq: each quad's scaled Jacobian and edge  */
                                 /* ratio in the accepted state (revert_pass)   */
+    unsigned char *old_turned;  /* nq: turned over there (quad_turned)         */
+    unsigned char *thin;        /* snt: too thin for its own normal            */
     unsigned char *dirty;       /* nq: to be judged again (revert_pass)        */
     sq_smooth_ctx ctx;
 } smoother;
@@ -158,6 +160,31 @@ static void compute_margins(smoother *s, const double *pos)
     }
 }
 
+/* Quad f (its corners in pos, each in surface triangle tri[v] at
+ * barycentrics bary[3v..]) turned over on the surface: every corner facing
+ * away from both the interpolated vertex normal there and the triangle's
+ * own normal (the latter skipped on a triangle too thin to have one), as
+ * sq_quad_mesh_count_turned (extract/sq_extract.h) judges the result. */
+static int quad_turned(const smoother *s, const double *pos, const uint32_t *tri, const double *bary,
+                       const uint32_t *f)
+{
+    const double *p[4], *ns[4], *nf[4];
+    double sm[4][3];
+    for (int k = 0; k < 4; k++) {
+        uint32_t v = f[k], t = tri[v];
+        const double *bc = bary + 3 * (size_t)v;
+        const uint32_t *tv = s->stri + 3 * (size_t)t;
+        for (int i = 0; i < 3; i++)
+            sm[k][i] = bc[0] * s->vnormal[3 * (size_t)tv[0] + i] + bc[1] * s->vnormal[3 * (size_t)tv[1] + i] +
+                       bc[2] * s->vnormal[3 * (size_t)tv[2] + i];
+        double l = sqrt(sm[k][0] * sm[k][0] + sm[k][1] * sm[k][1] + sm[k][2] * sm[k][2]);
+        if (l > 0.0) sm[k][0] /= l, sm[k][1] /= l, sm[k][2] /= l;
+        p[k] = pos + 3 * (size_t)v, ns[k] = sm[k];
+        nf[k] = s->thin[t] ? sm[k] : s->tri_normal + 3 * (size_t)t;
+    }
+    return fmax(sq_quad_turn_margin(p, ns), sq_quad_turn_margin(p, nf)) < 0.0;
+}
+
 /* The acceptance test of a smoothing step (docs/smooth.md, "Acceptance"):
  * none of the referee's measures gets worse, and the primary one improves. */
 static int quality_not_worse(const sq_quad_quality *n, const sq_quad_quality *o)
@@ -167,8 +194,9 @@ static int quality_not_worse(const sq_quad_quality *n, const sq_quad_quality *o)
 }
 
 /* Local acceptance (docs/smooth.md, "Acceptance"): a quad that the candidate
- * would fold, push below min(its own, the current minimum) scaled Jacobian
- * or give an edge ratio above its own + tau gets its four vertices reverted
+ * would fold or turn over on the surface (quad_turned; one already turned
+ * may stay so), push below min(its own, the current minimum) scaled
+ * Jacobian or give an edge ratio above its own + tau gets its four vertices reverted
  * to the accepted state; repeated until no quad is reverted (a revert
  * changes the neighbours' quads). revert_worsened: tau = infinity, then
  * 1, 1/2, ... (then 0) while the mean edge ratio is above the current one.
@@ -183,6 +211,7 @@ static void set_old_shapes(smoother *s)
         sq_quad_quality qo;
         sq_quad_quality_compute_shapes(s->pos, 1, s->quads + 4 * (size_t)q, &qo);
         s->old_sjac[q] = qo.sjac_min, s->old_ratio[q] = qo.edge_ratio_mean;
+        s->old_turned[q] = (unsigned char)quad_turned(s, s->pos, s->vtri, s->vbary, s->quads + 4 * (size_t)q);
     }
 }
 
@@ -203,7 +232,8 @@ static void revert_pass(smoother *s, const sq_quad_quality *g, double tau)
             sq_quad_quality_compute_shapes(s->cand, 1, f, &qn);
             int bad = qn.folded || !(qn.fold_margin_min >= s->threshold[q]) ||
                       !(qn.sjac_min >= fmin(s->old_sjac[q], g->sjac_min)) ||
-                      !(qn.edge_ratio_mean <= s->old_ratio[q] + tau);
+                      !(qn.edge_ratio_mean <= s->old_ratio[q] + tau) ||
+                      (!s->old_turned[q] && quad_turned(s, s->cand, s->cand_tri, s->cand_bary, f));
             if (!bad) continue;
             for (int k = 0; k < 4; k++) {
                 uint32_t v = f[k];
@@ -257,13 +287,21 @@ static int pin_far_surface_vertices(smoother *s, sq_error *err)
         uint32_t deg = s->vq_off[v + 1] - s->vq_off[v];
         if (s->pinned[v] || deg > 16) continue;
         sq_quad_quality qo[16], qn;
-        for (uint32_t j = 0; j < deg; j++)
-            sq_quad_quality_compute(s->pos, 1, s->quads + 4 * (size_t)s->vq[s->vq_off[v] + j], &qo[j]);
-        double *x = s->pos + 3 * (size_t)v, old[3];
+        int turned[16];
+        for (uint32_t j = 0; j < deg; j++) {
+            const uint32_t *f = s->quads + 4 * (size_t)s->vq[s->vq_off[v] + j];
+            sq_quad_quality_compute(s->pos, 1, f, &qo[j]);
+            turned[j] = quad_turned(s, s->pos, s->vtri, s->vbary, f);
+        }
+        double *x = s->pos + 3 * (size_t)v, old[3], old_bary[3];
+        uint32_t old_tri = s->vtri[v];
         memcpy(old, x, sizeof old);
+        memcpy(old_bary, s->vbary + 3 * (size_t)v, sizeof old_bary);
         sq_cp_hit hit; /* the surface vertex as a point of one of its triangles */
         sq_cp_tree_query(&s->tree, s->spos + 3 * (size_t)s->pin_s[a], &hit);
         memcpy(x, hit.point, sizeof hit.point);
+        s->vtri[v] = hit.tri;
+        memcpy(s->vbary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
         int ok = 1;
         double dang = 0.0, dratio = 0.0;
         for (uint32_t j = 0; j < deg && ok; j++) {
@@ -272,7 +310,8 @@ static int pin_far_surface_vertices(smoother *s, sq_error *err)
             sq_quad_quality_compute(s->pos, 1, f, &qn);
             double m = sq_quad_fold_margin(s->pos + 3 * (size_t)f[0], s->pos + 3 * (size_t)f[1],
                                            s->pos + 3 * (size_t)f[2], s->pos + 3 * (size_t)f[3]);
-            ok = !qn.folded && m >= s->threshold[q] && qn.sjac_min >= fmin(qo[j].sjac_min, floor);
+            ok = !qn.folded && m >= s->threshold[q] && qn.sjac_min >= fmin(qo[j].sjac_min, floor) &&
+                 (turned[j] || !quad_turned(s, s->pos, s->vtri, s->vbary, f));
             dang += qn.angle_mean_dev_deg - qo[j].angle_mean_dev_deg;
             dratio += qn.edge_ratio_mean - qo[j].edge_ratio_mean;
         }
@@ -280,11 +319,11 @@ static int pin_far_surface_vertices(smoother *s, sq_error *err)
              (ratio_sum + dratio) / s->nq <= in->edge_ratio_mean;
         if (!ok) {
             memcpy(x, old, sizeof old);
+            s->vtri[v] = old_tri;
+            memcpy(s->vbary + 3 * (size_t)v, old_bary, sizeof old_bary);
             continue;
         }
         ang_sum += dang, ratio_sum += dratio;
-        s->vtri[v] = hit.tri;
-        memcpy(s->vbary + 3 * (size_t)v, hit.bary, sizeof hit.bary);
         s->pinned[v] = 1;
         pinned++;
     }
@@ -451,6 +490,8 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     s.old_sjac = malloc((size_t)nq * sizeof(double));
     s.old_ratio = malloc((size_t)nq * sizeof(double));
     s.dirty = malloc(nq);
+    s.old_turned = malloc(nq);
+    s.thin = malloc((size_t)snt + 1);
     s.target = malloc(4 * (size_t)nq * sizeof(double));
     s.ideal_log = malloc(4 * (size_t)nq * sizeof(double));
     double *vnormal = calloc(3 * (size_t)snv, sizeof(double));
@@ -459,7 +500,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     if (!tri_normal || !base || !s.vtri || !s.frame || !s.h || !s.ref_normal || !s.threshold || !s.margin ||
         !s.x || !s.cand || !s.cand_tri || !s.con_quad || !s.res_off || !s.res_param || !s.res_dim ||
         !s.untangle || !s.base_angle || !s.pin_v || !s.pin_s || !s.pinned || !s.vq_off || !s.vq || !s.target || !s.ideal_log ||
-        !vnormal || !s.vbary || !s.cand_bary || !s.old_sjac || !s.old_ratio || !s.dirty) {
+        !vnormal || !s.vbary || !s.cand_bary || !s.old_sjac || !s.old_ratio || !s.dirty || !s.old_turned || !s.thin) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory for %u vertices", nv);
         goto done;
     }
@@ -477,6 +518,12 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
         double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
         double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        /* as extract/sq_quad_mesh_turned.c: below 1e-10 of the longest side
+         * squared, rounding decides the cross product's direction */
+        double e3[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+        double longest = fmax(fmax(u[0] * u[0] + u[1] * u[1] + u[2] * u[2], w[0] * w[0] + w[1] * w[1] + w[2] * w[2]),
+                              e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2]);
+        s.thin[t] = !(l > 1e-10 * longest);
         if (!(l > 0.0)) { /* cannot happen for a validated surface: no collinear triangle */
             n[0] = 0, n[1] = 0, n[2] = 1, l = 1;
         }
@@ -623,6 +670,7 @@ done:
     free(s.threshold), free(s.margin), free(s.x), free(s.cand), free(s.cand_tri), free(s.con_quad);
     free(s.res_off), free(s.res_param), free(s.res_dim), free(s.untangle), free(s.pin_v), free(s.pin_s);
     free(s.pinned), free(s.vq_off), free(s.vq), free(s.base_angle), free(s.old_sjac), free(s.old_ratio), free(s.dirty);
+    free(s.old_turned), free(s.thin);
     free(vnormal), free(s.vbary), free(s.cand_bary), free(s.target), free(s.ideal_log);
     return st;
 }

@@ -37,6 +37,14 @@ typedef struct sq_quad_quality {
  * quad folded when both cosines are negative, i.e. when this is < 0. */
 double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2, const double *p3);
 
+/* Turn margin of quad p[0..3] against the unit surface normals n[k] at its
+ * corners (a quad turned over on the surface: sq_extract.h): the largest
+ * over the corners of the cosine between the corner's normal (of the
+ * triangle of the corner and its two neighbours) and n[k], a corner below
+ * 1e-6 of the quad's largest counting 0 (its direction is rounding
+ * noise): < 0 exactly when every corner faces away from its n[k]. */
+double sq_quad_turn_margin(const double *const p[4], const double *const n[4]);
+
 void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads,
                              sq_quad_quality *q);
 

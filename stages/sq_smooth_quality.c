@@ -31,6 +31,24 @@ double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2,
     return c1 > c2 ? c1 : c2;
 }
 
+double sq_quad_turn_margin(const double *const p[4], const double *const n[4])
+{
+    double c[4][3], l[4], lmax = 0.0;
+    for (int k = 0; k < 4; k++) {
+        double e1[3], e2[3];
+        sub3(p[(k + 1) % 4], p[k], e1), sub3(p[(k + 3) % 4], p[k], e2), cross3(e1, e2, c[k]);
+        l[k] = sqrt(c[k][0] * c[k][0] + c[k][1] * c[k][1] + c[k][2] * c[k][2]);
+        if (l[k] > lmax) lmax = l[k];
+    }
+    double best = -1.0;
+    for (int k = 0; k < 4; k++) {
+        /* a corner a millionth of the largest has no direction to speak of */
+        double cs = l[k] > 1e-6 * lmax ? (c[k][0] * n[k][0] + c[k][1] * n[k][1] + c[k][2] * n[k][2]) / l[k] : 0.0;
+        if (cs > best) best = cs;
+    }
+    return best;
+}
+
 void sq_quad_size(const double *p0, const double *p1, const double *p2, const double *p3, double *area,
                   double *shortest_edge)
 {
