@@ -76,6 +76,7 @@ typedef struct smoother {
                                 /* ratio in the accepted state (revert_pass)   */
     unsigned char *old_turned;  /* nq: turned over there (quad_turned)         */
     unsigned char *thin;        /* snt: too thin for its own normal            */
+    double *unit_vnormal;       /* 3*snv: vnormal normalized (quad_turned)     */
     unsigned char *dirty;       /* nq: to be judged again (revert_pass)        */
     sq_smooth_ctx ctx;
 } smoother;
@@ -162,9 +163,10 @@ static void compute_margins(smoother *s, const double *pos)
 
 /* Quad f (its corners in pos, each in surface triangle tri[v] at
  * barycentrics bary[3v..]) turned over on the surface: every corner facing
- * away from both the interpolated vertex normal there and the triangle's
- * own normal (the latter skipped on a triangle too thin to have one), as
- * sq_quad_mesh_count_turned (extract/sq_extract.h) judges the result. */
+ * away from both the interpolated unit vertex normals there and the
+ * triangle's own normal (the latter skipped on a triangle too thin to have
+ * one), as sq_quad_mesh_count_turned (extract/sq_extract.h) judges the
+ * result. */
 static int quad_turned(const smoother *s, const double *pos, const uint32_t *tri, const double *bary,
                        const uint32_t *f)
 {
@@ -175,8 +177,8 @@ static int quad_turned(const smoother *s, const double *pos, const uint32_t *tri
         const double *bc = bary + 3 * (size_t)v;
         const uint32_t *tv = s->stri + 3 * (size_t)t;
         for (int i = 0; i < 3; i++)
-            sm[k][i] = bc[0] * s->vnormal[3 * (size_t)tv[0] + i] + bc[1] * s->vnormal[3 * (size_t)tv[1] + i] +
-                       bc[2] * s->vnormal[3 * (size_t)tv[2] + i];
+            sm[k][i] = bc[0] * s->unit_vnormal[3 * (size_t)tv[0] + i] +
+                       bc[1] * s->unit_vnormal[3 * (size_t)tv[1] + i] + bc[2] * s->unit_vnormal[3 * (size_t)tv[2] + i];
         double l = sqrt(sm[k][0] * sm[k][0] + sm[k][1] * sm[k][1] + sm[k][2] * sm[k][2]);
         if (l > 0.0) sm[k][0] /= l, sm[k][1] /= l, sm[k][2] /= l;
         p[k] = pos + 3 * (size_t)v, ns[k] = sm[k];
@@ -492,6 +494,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     s.dirty = malloc(nq);
     s.old_turned = malloc(nq);
     s.thin = malloc((size_t)snt + 1);
+    s.unit_vnormal = malloc(3 * ((size_t)snv + 1) * sizeof(double));
     s.target = malloc(4 * (size_t)nq * sizeof(double));
     s.ideal_log = malloc(4 * (size_t)nq * sizeof(double));
     double *vnormal = calloc(3 * (size_t)snv, sizeof(double));
@@ -500,7 +503,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     if (!tri_normal || !base || !s.vtri || !s.frame || !s.h || !s.ref_normal || !s.threshold || !s.margin ||
         !s.x || !s.cand || !s.cand_tri || !s.con_quad || !s.res_off || !s.res_param || !s.res_dim ||
         !s.untangle || !s.base_angle || !s.pin_v || !s.pin_s || !s.pinned || !s.vq_off || !s.vq || !s.target || !s.ideal_log ||
-        !vnormal || !s.vbary || !s.cand_bary || !s.old_sjac || !s.old_ratio || !s.dirty || !s.old_turned || !s.thin) {
+        !vnormal || !s.vbary || !s.cand_bary || !s.old_sjac || !s.old_ratio || !s.dirty || !s.old_turned || !s.thin || !s.unit_vnormal) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "smooth: out of memory for %u vertices", nv);
         goto done;
     }
@@ -530,6 +533,11 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         for (int k = 0; k < 3; k++) tri_normal[3 * (size_t)t + k] = n[k] / l;
     }
     sq_area_weighted_normals(snv, spos, snt, stri, vnormal);
+    for (uint32_t v = 0; v < snv; v++) {
+        const double *n = vnormal + 3 * (size_t)v;
+        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; k++) s.unit_vnormal[3 * (size_t)v + k] = l > 0.0 ? n[k] / l : 0.0;
+    }
     sq_smooth_targets(nv, nq, quads, s.target, s.ideal_log);
     s.ctx = (sq_smooth_ctx){nv, nq, quads, base, s.frame, s.h, s.ref_normal, s.untangle, s.threshold,
                             NULL, NULL, s.con_quad, opt->angle_weight, opt->length_weight,
@@ -670,7 +678,7 @@ done:
     free(s.threshold), free(s.margin), free(s.x), free(s.cand), free(s.cand_tri), free(s.con_quad);
     free(s.res_off), free(s.res_param), free(s.res_dim), free(s.untangle), free(s.pin_v), free(s.pin_s);
     free(s.pinned), free(s.vq_off), free(s.vq), free(s.base_angle), free(s.old_sjac), free(s.old_ratio), free(s.dirty);
-    free(s.old_turned), free(s.thin);
+    free(s.old_turned), free(s.thin), free(s.unit_vnormal);
     free(vnormal), free(s.vbary), free(s.cand_bary), free(s.target), free(s.ideal_log);
     return st;
 }
