@@ -583,10 +583,11 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
             st = sq_remesh_repair_intersections(m, &out->quads, &left, &stats->repair_rounds, err);
             stats->t_verify = sq_now() - t1;
             if (st) goto fail;
-            if (left > 0 && raw && stats->smoothed) {
+            if (left > 0 && raw && stats->smoothed && stats->untangle.folded_after == 0) {
                 /* the smoothed quads (and the unsmoothed ones, which
                  * intersect too) cannot be repaired: the unsmoothed ones
-                 * repaired instead, if they can be (vmas/pinion at 1K) */
+                 * (none folded) repaired instead, if they can be
+                 * (vmas/pinion at 1K) */
                 double *smoothed = out->quads.pos;
                 uint64_t found = 0, left_raw = 0;
                 uint32_t rounds = 0;
