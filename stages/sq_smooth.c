@@ -636,6 +636,16 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         if (r == 0) {
             /* retry from the same state with a damped step: each vertex's
              * offset gets a residual damping * (a, b), damping x4 per retry */
+            if (retries == MAX_RETRY && !stats->thorough) {
+                /* the quick, inexact solves lead nowhere from here (homer's
+                 * quads from its cones at 5K after one iteration): go on
+                 * with thorough solves from the same state */
+                stats->thorough = 1;
+                retries = 0;
+                s.ctx.damping = 0.0;
+                it--;
+                continue;
+            }
             if (retries == MAX_RETRY) {
                 snprintf(stats->stop_reason, sizeof stats->stop_reason,
                          "step rejected: after re-projection it would fold a quad or worsen a quality measure, "
