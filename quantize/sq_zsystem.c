@@ -185,25 +185,8 @@ void sq_zsys_add_face(sq_zsys *S, uint32_t f, const double g[6], const double H[
     const sq_uv_basis *B = S->B;
     uint32_t hc[3];
     sq_face_corners(S->m, f, hc);
-    if (S->slot) { /* the same sums, the positions cached */
-        const uint32_t *sl = S->slot + S->slot_off[f];
-        for (int k1 = 0; k1 < 6; k1++) {
-            size_t r1 = 2 * (size_t)hc[k1 / 2] + k1 % 2;
-            for (uint32_t j1 = B->row_off[r1]; j1 < B->row_off[r1 + 1]; j1++) {
-                uint32_t c1 = B->col[j1];
-                double v1 = B->val[j1];
-                gz[c1] += v1 * g[k1];
-                for (int k2 = 0; k2 < 6; k2++) {
-                    size_t r2 = 2 * (size_t)hc[k2 / 2] + k2 % 2;
-                    for (uint32_t j2 = B->row_off[r2]; j2 < B->row_off[r2 + 1]; j2++) {
-                        if (B->col[j2] > c1) continue;
-                        S->h_val[*sl++] += v1 * H[k1 * 6 + k2] * B->val[j2];
-                    }
-                }
-            }
-        }
-        return;
-    }
+    /* the entry positions cached at setup, else searched */
+    const uint32_t *sl = S->slot ? S->slot + S->slot_off[f] : NULL;
     for (int k1 = 0; k1 < 6; k1++) {
         size_t r1 = 2 * (size_t)hc[k1 / 2] + k1 % 2;
         for (uint32_t j1 = B->row_off[r1]; j1 < B->row_off[r1 + 1]; j1++) {
@@ -215,7 +198,8 @@ void sq_zsys_add_face(sq_zsys *S, uint32_t f, const double g[6], const double H[
                 for (uint32_t j2 = B->row_off[r2]; j2 < B->row_off[r2 + 1]; j2++) {
                     uint32_t c2 = B->col[j2];
                     if (c2 > c1) continue;
-                    *sq_zsys_entry(S, c1, c2) += v1 * H[k1 * 6 + k2] * B->val[j2];
+                    double *e = sl ? S->h_val + *sl++ : sq_zsys_entry(S, c1, c2);
+                    *e += v1 * H[k1 * 6 + k2] * B->val[j2];
                 }
             }
         }
