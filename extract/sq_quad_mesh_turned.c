@@ -4,32 +4,15 @@
 #include "sq_extract.h"
 #include "sq_smooth.h"
 
-static void sub3(const double *a, const double *b, double *d)
-{
-    d[0] = a[0] - b[0], d[1] = a[1] - b[1], d[2] = a[2] - b[2];
-}
-
-static void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* Triangle f's unit normal, or n left as it is where the triangle is too
- * thin for its cross product to have a direction (below 1e-10 of its
- * longest side squared: rounding decides it). */
+ * thin to have one (sq_triangle_unit_normal). */
 static void face_normal_if_defined(const sq_mesh *m, uint32_t f, double n[3])
 {
     uint32_t h = m->f_he[f];
     const double *a = m->pos + 3 * (size_t)m->he_vert[h], *b = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]],
                  *c = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
-    double e1[3], e2[3], e3[3], x[3];
-    sub3(b, a, e1), sub3(c, a, e2), sub3(c, b, e3), cross3(e1, e2, x);
-    double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), s = 0.0;
-    const double *e[3] = {e1, e2, e3};
-    for (int k = 0; k < 3; k++) s = fmax(s, e[k][0] * e[k][0] + e[k][1] * e[k][1] + e[k][2] * e[k][2]);
-    if (l > 1e-10 * s) n[0] = x[0] / l, n[1] = x[1] / l, n[2] = x[2] / l;
+    double x[3];
+    if (sq_triangle_unit_normal(a, b, c, x)) n[0] = x[0], n[1] = x[1], n[2] = x[2];
 }
 
 double sq_quad_turn_margin_on(const sq_mesh *m, const double *vn, const double *const p[4], const uint32_t face[4],

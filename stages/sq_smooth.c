@@ -518,19 +518,9 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     for (uint32_t t = 0; t < snt; t++) {
         const double *a = spos + 3 * (size_t)stri[3 * (size_t)t], *b = spos + 3 * (size_t)stri[3 * (size_t)t + 1],
                      *c = spos + 3 * (size_t)stri[3 * (size_t)t + 2];
-        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        /* as extract/sq_quad_mesh_turned.c: below 1e-10 of the longest side
-         * squared, rounding decides the cross product's direction */
-        double e3[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
-        double longest = fmax(fmax(u[0] * u[0] + u[1] * u[1] + u[2] * u[2], w[0] * w[0] + w[1] * w[1] + w[2] * w[2]),
-                              e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2]);
-        s.thin[t] = !(l > 1e-10 * longest);
-        if (!(l > 0.0)) { /* cannot happen for a validated surface: no collinear triangle */
-            n[0] = 0, n[1] = 0, n[2] = 1, l = 1;
-        }
-        for (int k = 0; k < 3; k++) tri_normal[3 * (size_t)t + k] = n[k] / l;
+        double *n = tri_normal + 3 * (size_t)t;
+        n[0] = 0, n[1] = 0, n[2] = 1; /* kept only without area: not in a validated surface */
+        s.thin[t] = !sq_triangle_unit_normal(a, b, c, n);
     }
     sq_area_weighted_normals(snv, spos, snt, stri, vnormal);
     for (uint32_t v = 0; v < snv; v++) {

@@ -37,6 +37,12 @@ typedef struct sq_quad_quality {
  * quad folded when both cosines are negative, i.e. when this is < 0. */
 double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2, const double *p3);
 
+/* The unit normal of triangle (a, b, c), (b - a) x (c - a) normalized,
+ * into n (left as it is when the cross product is zero); returns 1 when
+ * it has a direction, 0 when the triangle is too thin for one (the cross
+ * product below 1e-10 of the longest side squared: rounding decides it). */
+int sq_triangle_unit_normal(const double *a, const double *b, const double *c, double n[3]);
+
 /* Turn margin of quad p[0..3] against the unit surface normals n[k] at its
  * corners (a quad turned over on the surface: sq_extract.h): the largest
  * over the corners of the cosine between the corner's normal (of the

@@ -31,6 +31,15 @@ double sq_quad_fold_margin(const double *p0, const double *p1, const double *p2,
     return c1 > c2 ? c1 : c2;
 }
 
+int sq_triangle_unit_normal(const double *a, const double *b, const double *c, double n[3])
+{
+    double e1[3], e2[3], e3[3], x[3];
+    sub3(b, a, e1), sub3(c, a, e2), sub3(c, b, e3), cross3(e1, e2, x);
+    double l = sqrt(dot3(x, x)), longest = fmax(fmax(dot3(e1, e1), dot3(e2, e2)), dot3(e3, e3));
+    if (l > 0.0) n[0] = x[0] / l, n[1] = x[1] / l, n[2] = x[2] / l;
+    return l > 1e-10 * longest;
+}
+
 double sq_quad_turn_margin(const double *const p[4], const double *const n[4])
 {
     double c[4][3], l[4], lmax = 0.0;
