@@ -181,22 +181,20 @@ done:
  * cones' conformal scale: sum over faces of area |J - s_f R(-theta_f)|^2,
  * theta_f = phi_f pi/2 (the field's direction in f's frame goes to the u
  * axis), s_f from cone_scale. A linear least-squares problem in the basis:
- * one Newton step from z = 0 solves it. z: nz, out. */
-static sq_status field_aligned(build *X, double *z, sq_error *err)
+ * one Newton step from z = 0 solves it, in S (sq_zsys_init of the map's
+ * mesh and basis; step 3 goes on with it). z: nz, out. */
+static sq_status field_aligned(build *X, sq_zsys *S, double *z, sq_error *err)
 {
     const sq_mesh *mc = &X->S.mesh;
     const sq_uv_basis *B = &X->B;
     uint32_t nz = B->nz;
-    sq_zsys S;
     double *uv = malloc(B->ncoord * sizeof *uv), *gz = malloc(((size_t)nz + 1) * sizeof *gz);
     double *scale = NULL;
     sq_status st = SQ_OK;
-    memset(&S, 0, sizeof S);
     if (!uv || !gz) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (field-aligned map)");
         goto done;
     }
-    if ((st = sq_zsys_init(&S, mc, B, err))) goto done;
     scale = malloc((size_t)mc->nf * sizeof *scale);
     if (!scale) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (field-aligned map)");
@@ -206,7 +204,7 @@ static sq_status field_aligned(build *X, double *z, sq_error *err)
     if ((st = cone_scale(X, scale, err))) goto done;
     memset(z, 0, nz * sizeof *z);
     sq_uv_basis_eval(B, z, uv);
-    sq_zsys_zero(&S, gz);
+    sq_zsys_zero(S, gz);
     for (uint32_t f = 0; f < mc->nf; f++) {
         const sq_sd_face *F = &X->F[f];
         if (F->area == 0) continue;
@@ -223,11 +221,10 @@ static sq_status field_aligned(build *X, double *z, sq_error *err)
                         H[(2 * c1 + a1) * 6 + 2 * c2 + a2] =
                             a1 == a2 ? 2 * F->area * (F->G[c1][0] * F->G[c2][0] + F->G[c1][1] * F->G[c2][1]) : 0.0;
             }
-        sq_zsys_add_face(&S, f, g, H, gz);
+        sq_zsys_add_face(S, f, g, H, gz);
     }
-    st = sq_zsys_solve(&S, NULL, gz, z, err);
+    st = sq_zsys_solve(S, NULL, gz, z, err);
 done:
-    sq_zsys_free(&S);
     free(uv), free(gz), free(scale);
     return st;
 }
@@ -323,6 +320,8 @@ sq_status sq_map_from_rotations(const sq_mesh *m, const int32_t *valence, const 
     memset(&X, 0, sizeof X);
     X.m = m;
     double *z = NULL, *uv = NULL;
+    sq_zsys S; /* the Newton system of steps 2 and 3 */
+    memset(&S, 0, sizeof S);
     sq_status st = make_mesh(&X, err);
     if (st) goto done;
     const sq_mesh *mc = &X.S.mesh;
@@ -355,7 +354,8 @@ sq_status sq_map_from_rotations(const sq_mesh *m, const int32_t *valence, const 
         goto done;
     }
     double t1 = sq_now();
-    if ((st = field_aligned(&X, z, err))) goto done;
+    if ((st = sq_zsys_init(&S, mc, &X.B, err))) goto done;
+    if ((st = field_aligned(&X, &S, z, err))) goto done;
     if (!normalize_area(&X, z)) {
         snprintf(rep->why, sizeof rep->why, "the conformal map has no positive area");
         goto done;
@@ -363,7 +363,7 @@ sq_status sq_map_from_rotations(const sq_mesh *m, const int32_t *valence, const 
     rep->seconds_fit = sq_now() - t1;
     t1 = sq_now();
     sq_untangle_result ur;
-    if ((st = sq_map_untangle(mc, &X.B, X.F, z, max_it, &ur, err))) goto done;
+    if ((st = sq_map_untangle(mc, &X.B, X.F, &S, z, max_it, &ur, err))) goto done;
     rep->seconds_untangle = sq_now() - t1;
     rep->flipped_start = ur.flipped_before;
     rep->flipped_after = ur.flipped_after;
@@ -378,6 +378,7 @@ sq_status sq_map_from_rotations(const sq_mesh *m, const int32_t *valence, const 
     st = finish(&X, uv, valence, out, rep, err);
 done:
     rep->seconds = sq_now() - t0;
+    sq_zsys_free(&S);
     free(z), free(uv);
     sq_uv_basis_free(&X.B);
     sq_map_free(&X.S);

@@ -152,7 +152,7 @@ static double min_det(const sq_mesh *m, const sq_sd_face *F, const double *he_uv
     return dmin;
 }
 
-sq_status sq_map_untangle(const sq_mesh *m, const sq_uv_basis *B, const sq_sd_face *F, double *z,
+sq_status sq_map_untangle(const sq_mesh *m, const sq_uv_basis *B, const sq_sd_face *F, sq_zsys *S, double *z,
                           uint32_t max_iterations, sq_untangle_result *res, sq_error *err)
 {
     memset(res, 0, sizeof *res);
@@ -160,14 +160,17 @@ sq_status sq_map_untangle(const sq_mesh *m, const sq_uv_basis *B, const sq_sd_fa
     double *uv = malloc(B->ncoord * sizeof *uv), *trial = malloc(B->ncoord * sizeof *trial);
     double *gz = malloc(((size_t)nz + 1) * sizeof *gz), *d = malloc(((size_t)nz + 1) * sizeof *d);
     double *zt = malloc(((size_t)nz + 1) * sizeof *zt);
-    sq_zsys S;
-    memset(&S, 0, sizeof S);
+    sq_zsys own;
+    memset(&own, 0, sizeof own);
     sq_status st = SQ_OK;
     if (!uv || !trial || !gz || !d || !zt) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (untangling)");
         goto done;
     }
-    if ((st = sq_zsys_init(&S, m, B, err))) goto done;
+    if (!S) {
+        if ((st = sq_zsys_init(&own, m, B, err))) goto done;
+        S = &own;
+    }
     sq_uv_basis_eval(B, z, uv);
     uint32_t bad;
     double dmin = min_det(m, F, uv, &bad);
@@ -177,15 +180,15 @@ sq_status sq_map_untangle(const sq_mesh *m, const sq_uv_basis *B, const sq_sd_fa
         res->rounds++;
         double e_start = total_energy(m, F, uv, eps), e = e_start;
         for (uint32_t k = 0; k < STEPS_PER_EPS && res->iterations < max_iterations; k++) {
-            sq_zsys_zero(&S, gz);
+            sq_zsys_zero(S, gz);
             for (uint32_t f = 0; f < m->nf; f++) {
                 if (F[f].area == 0) continue;
                 double fu[6], g[6], H[36];
                 sq_face_uv(m, uv, f, fu);
                 face_grad_hess(&F[f], fu, eps, g, H);
-                sq_zsys_add_face(&S, f, g, H, gz);
+                sq_zsys_add_face(S, f, g, H, gz);
             }
-            if ((st = sq_zsys_solve(&S, NULL, gz, d, err))) goto done;
+            if ((st = sq_zsys_solve(S, NULL, gz, d, err))) goto done;
             double slope = 0;
             for (uint32_t i = 0; i < nz; i++) slope += gz[i] * d[i];
             if (!(slope < 0)) break;
@@ -216,7 +219,7 @@ sq_status sq_map_untangle(const sq_mesh *m, const sq_uv_basis *B, const sq_sd_fa
     res->flipped_after = bad;
     res->eps = eps;
 done:
-    sq_zsys_free(&S);
+    sq_zsys_free(&own);
     free(uv), free(trial), free(gz), free(d), free(zt);
     return st;
 }

@@ -19,8 +19,10 @@ typedef struct sq_untangle_result {
 /* Moves the unknowns z (the map c + P z of basis B on mesh m; F: nf
  * surface triangles, area 0 for those left out) until every triangle has
  * a positive Jacobian determinant in doubles, or max_iterations Newton
- * steps are spent. */
-sq_status sq_map_untangle(const sq_mesh *m, const sq_uv_basis *B, const sq_sd_face *F, double *z,
+ * steps are spent. S: the Newton system of m and B from sq_zsys_init,
+ * its values overwritten (a caller that solved with it before passes it
+ * on, and its symbolic factorization is reused), or NULL to build one. */
+sq_status sq_map_untangle(const sq_mesh *m, const sq_uv_basis *B, const sq_sd_face *F, sq_zsys *S, double *z,
                           uint32_t max_iterations, sq_untangle_result *res, sq_error *err);
 
 #endif

@@ -183,7 +183,7 @@ static void test_untangle_pushed(void **state)
     sq_uv_basis_eval(&B, z, uv);
     const uint32_t before = flipped(&M.mesh, uv);
     sq_untangle_result res;
-    if (sq_map_untangle(&M.mesh, &B, F, z, 300, &res, &err)) fail_msg("%s", err.msg);
+    if (sq_map_untangle(&M.mesh, &B, F, NULL, z, 300, &res, &err)) fail_msg("%s", err.msg);
     sq_uv_basis_eval(&B, z, uv);
     print_message("eight pushed: %u flipped -> %u after %u iterations (%u values of eps)\n", before,
                   flipped(&M.mesh, uv), res.iterations, res.rounds);
