@@ -54,8 +54,13 @@ static void help(FILE *f)
             "  verify    the quads, each split along its shorter diagonal, must not\n"
             "            intersect each other where the input does not intersect\n"
             "            itself (CGAL's exact test); where they do, the vertices of\n"
-            "            the quads involved are relaxed on MESH (cones excepted, no\n"
-            "            quad folded) for up to 20 rounds; any pair left fails the run\n"
+            "            the quads involved are relaxed on MESH (cones too, no quad\n"
+            "            folded) for up to 20 rounds; a pair left (or a quad left\n"
+            "            folded at extract) refuses the layout, and quantize to\n"
+            "            verify run again from the same map at another size: a\n"
+            "            quarter above the fewest quads the cones allow where the\n"
+            "            layout had those, else 3%% above, then 3%% below the size\n"
+            "            asked; three layouts refused fail the run\n"
             "  export    with --step, --iges or --limit: the quads' Catmull-Clark\n"
             "            surface (OpenSubdiv) as B-spline patches or a limit mesh, as\n"
             "            `seamquad subdiv` writes them\n"
@@ -82,6 +87,7 @@ static void help(FILE *f)
             "                       must agree); optimize runs on it whole\n"
             "  --quads N            about N quads (default 5000; 1 <= N <= 1e8); below the\n"
             "                       fewest the cones' layout allows, that fewest\n"
+            "                       (a quarter more where that layout is refused)\n"
             "  --edge-length L      quad edges of about L on the surface instead\n"
             "  --smooth on|off      the smoothing stage (default on)\n"
             "  --step OUT.step      the subdivision surface as STEP AP214 B-spline patches\n"
@@ -224,6 +230,8 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
     if (s->quantize.min_quads > 0 && s->quantize.quads > 0 && s->quantize.min_quads >= s->quantize.quads)
         printf(" (the fewest this layout allows)");
     printf(", T-mesh of %u rectangles, %.2f s\n", s->quantize.faces, s->t_quantize);
+    if (s->layouts > 1)
+        printf("              layout %u of the sizes tried; the last refused: %s\n", s->layouts, s->layout_why);
     printf("extract       %u quads, %u vertices, %u irregular; %u folded quads relaxed; %.2f s\n",
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before, s->t_extract);
     if (s->smoothed) {
@@ -288,8 +296,11 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     printf(", \"seconds\": %.6f, \"stopped\": ", s->t_optimize);
     sq_json_string(stdout, s->optimize.why);
     printf("}");
-    printf(",\n  \"quantize\": {\"quads\": %.0f, \"min_quads\": %.0f, \"tmesh_faces\": %u, \"seconds\": %.6f}",
-           s->quantize.quads, s->quantize.min_quads, s->quantize.faces, s->t_quantize);
+    printf(",\n  \"quantize\": {\"quads\": %.0f, \"min_quads\": %.0f, \"tmesh_faces\": %u, \"layouts\": %u, "
+           "\"layout_refused\": ",
+           s->quantize.quads, s->quantize.min_quads, s->quantize.faces, s->layouts);
+    sq_json_string(stdout, s->layout_why);
+    printf(", \"seconds\": %.6f}", s->t_quantize);
     printf(",\n  \"extract\": {\"quads\": %u, \"vertices\": %u, \"irregular\": %u, \"folded_before\": %u, "
            "\"folded_after\": %u, \"seconds\": %.6f}",
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before,

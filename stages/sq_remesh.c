@@ -332,6 +332,245 @@ void sq_remesh_result_free(sq_remesh_result *r)
     memset(r, 0, sizeof *r);
 }
 
+/* Stages 5 to 8 from the optimized map M: the quads of a layout of about
+ * `quads` quads (or edges of about `edge_length`) in out->quads and its
+ * integer-grid map in igm, verified. On failure stats->stage names the
+ * stage; out->quads and igm may hold its partial results (the caller
+ * frees them). */
+static sq_status quads_from_map(const sq_mesh *m, const sq_map *M, const sq_remesh_options *opt, double quads,
+                                double edge_length, progress_ctx *pc, sq_remesh_result *out, sq_map *igm,
+                                sq_remesh_stats *stats, sq_error *err)
+{
+    double *raw = NULL;
+    sq_status st;
+    /* 5. quantize (with its own optimization step) */
+    double t1 = sq_now();
+    begin(pc, stats, "quantize", SHARE_QUANTIZE);
+    sq_quantize_options qo;
+    memset(&qo, 0, sizeof qo);
+    qo.quads = quads;
+    qo.edge_length = edge_length;
+    qo.targets = SQ_TARGETS_MAP;
+    qo.optimize = 1;
+    st = sq_quantize(M, &qo, igm, &stats->quantize, err);
+    stats->t_quantize = sq_now() - t1;
+    if (st) goto done;
+
+    /* 6. extract, untangle */
+    t1 = sq_now();
+    begin(pc, stats, "extract", SHARE_EXTRACT);
+    st = sq_extract(igm, &out->quads, &stats->extract, err);
+    if (!st) st = sq_extract_untangle(igm, &out->quads, &stats->untangle, err);
+    stats->t_extract = sq_now() - t1;
+    if (st) goto done;
+
+    /* 7. smooth; the smoother untangles what is left folded first */
+    if (!opt->no_smoothing) {
+        t1 = sq_now();
+        begin(pc, stats, "smooth", SHARE_SMOOTH);
+        st = smooth_stage(m, &out->quads, pc, &raw, stats, err);
+        stats->t_smooth = sq_now() - t1;
+        if (st) goto done;
+    }
+    /* a quad still folded fails the run */
+    if (!stats->smoothed && stats->untangle.folded_after > 0) {
+        stats->stage = "extract";
+        st = sq_error_set(err, SQ_ERR_SOLVER,
+                          "%u of %u quads stay folded over the surface after untangling (the "
+                          "integer-grid map is too distorted there); more optimizer "
+                          "iterations may help",
+                          stats->untangle.folded_after, out->quads.nq);
+        goto done;
+    }
+    /* 8. no quad surface through itself where the input is not */
+    t1 = sq_now();
+    begin(pc, stats, "verify", 1.0 - pc->base - pc->share);
+    st = sq_remesh_quad_intersections(&out->quads, &stats->self_intersections, NULL, 0, err);
+    stats->input_self_intersections = -1;
+    stats->t_verify = sq_now() - t1;
+    if (st) goto done;
+    if (stats->self_intersections > 0 && raw && stats->untangle.folded_after == 0) {
+        /* the unsmoothed quads, if they pass */
+        double *smoothed = out->quads.pos;
+        uint64_t pairs = 0;
+        out->quads.pos = raw;
+        st = sq_remesh_quad_intersections(&out->quads, &pairs, NULL, 0, err);
+        if (st) {
+            out->quads.pos = smoothed;
+            goto done;
+        }
+        out->quads.pos = smoothed;
+        if (pairs == 0) {
+            /* the smoothed quads repaired if they can be (where the input
+             * does not intersect itself), else those involved (and rings
+             * around them) put back unsmoothed, else all unsmoothed */
+            uint64_t in = 0, left = 1, found = stats->self_intersections;
+            uint32_t rounds = 0;
+            st = mesh_self_intersections(m, &in, err);
+            if (st) goto done;
+            stats->input_self_intersections = (int64_t)in;
+            if (in == 0) {
+                st = sq_remesh_repair_intersections(m, &out->quads, &left, &rounds, err);
+                if (st) goto done;
+            }
+            uint32_t kept = 0;
+            if (left != 0) { /* the repair's best, then the quads involved unsmoothed */
+                st = revert_intersecting(m, &out->quads, raw, &left, &kept, err);
+                if (st) goto done;
+            }
+            if (left == 0) {
+                stats->repaired = kept ? 0 : found;
+                stats->repair_rounds = rounds;
+                stats->smooth_kept += kept;
+                stats->self_intersections = 0;
+            } else {
+                snprintf(stats->smooth_why, sizeof stats->smooth_why,
+                         "%llu pairs of the smoothed quads' triangles intersect, none of the unsmoothed",
+                         (unsigned long long)found);
+                stats->self_intersections = 0;
+                stats->smoothed = 0;
+                stats->smooth_reverted = 1;
+                out->quads.pos = raw;
+                raw = smoothed;
+            }
+            stats->t_verify = sq_now() - t1;
+        }
+    }
+    if (stats->self_intersections > 0) {
+        uint64_t in = 0;
+        st = mesh_self_intersections(m, &in, err);
+        stats->t_verify = sq_now() - t1;
+        if (st) goto done;
+        stats->input_self_intersections = (int64_t)in;
+        if (in == 0) { /* the quads around the intersections relaxed on the surface */
+            uint64_t left = 0;
+            st = sq_remesh_repair_intersections(m, &out->quads, &left, &stats->repair_rounds, err);
+            stats->t_verify = sq_now() - t1;
+            if (st) goto done;
+            if (left > 0 && raw && stats->smoothed && stats->untangle.folded_after == 0) {
+                /* the smoothed quads (and the unsmoothed ones, which
+                 * intersect too) cannot be repaired: the unsmoothed ones
+                 * (none folded) repaired instead, if they can be
+                 * (vmas/pinion at 1K) */
+                double *smoothed = out->quads.pos;
+                uint64_t found = 0, left_raw = 0;
+                uint32_t rounds = 0;
+                out->quads.pos = raw;
+                st = sq_remesh_quad_intersections(&out->quads, &found, NULL, 0, err);
+                if (!st && found) st = sq_remesh_repair_intersections(m, &out->quads, &left_raw, &rounds, err);
+                stats->t_verify = sq_now() - t1;
+                if (st) {
+                    out->quads.pos = smoothed;
+                    goto done;
+                }
+                if (left_raw == 0) {
+                    /* the smoothed quads, with those involved (and rings
+                     * around them) put back at the repaired unsmoothed
+                     * places, if that leaves no pair */
+                    double *repaired_raw = out->quads.pos;
+                    uint64_t left_mix = 1;
+                    uint32_t kept = 0;
+                    out->quads.pos = smoothed;
+                    st = revert_intersecting(m, &out->quads, repaired_raw, &left_mix, &kept, err);
+                    stats->t_verify = sq_now() - t1;
+                    if (st) goto done;
+                    if (left_mix == 0) {
+                        stats->smooth_kept += kept;
+                        stats->repair_rounds = rounds;
+                        left = 0;
+                    } else {
+                        out->quads.pos = repaired_raw;
+                    }
+                }
+                if (left_raw == 0 && left != 0) {
+                    snprintf(stats->smooth_why, sizeof stats->smooth_why,
+                             "%llu pairs of the smoothed quads' triangles intersect after the repair",
+                             (unsigned long long)left);
+                    stats->smoothed = 0;
+                    stats->smooth_reverted = 1;
+                    stats->self_intersections = found;
+                    stats->repair_rounds = rounds;
+                    left = 0;
+                    raw = smoothed; /* freed at the end */
+                } else {
+                    out->quads.pos = smoothed;
+                }
+            }
+            stats->repaired = stats->self_intersections - left;
+            stats->self_intersections = left;
+        }
+        if (in == 0 && stats->self_intersections > 0) {
+            st = sq_error_set(err, SQ_ERR_SOLVER,
+                              "%llu pairs of the quads' triangles intersect after %u rounds of "
+                              "relaxing them on the surface (the quad surface passes through itself "
+                              "where the input does not: quads too skewed for the surface's thin "
+                              "parts or near the cones); more optimizer iterations may help",
+                              (unsigned long long)stats->self_intersections, stats->repair_rounds);
+            goto done;
+        }
+    }
+    /* the smoothed quads' figures are those returned (after the repair and
+     * what went back unsmoothed) */
+    if (stats->smoothed) sq_quad_quality_compute(out->quads.pos, out->quads.nq, out->quads.quad, &stats->smooth.after);
+    /* no quad the referee would reject as degenerate */
+    st = check_final_shapes(m, &out->quads, err);
+    stats->t_verify = sq_now() - t1;
+    if (st) goto done;
+done:
+    free(raw);
+    return st;
+}
+
+/* The size of the layouts tried from one map: `quads` (or `edge_length`)
+ * around a base size, perturbed. */
+typedef struct layout_size {
+    double base_quads, base_edge; /* the size the layouts revolve around */
+    double quads, edge_length;    /* the next layout's                   */
+    uint32_t perturbed;           /* layouts tried at this base, less 1  */
+} layout_size;
+
+/* The next layout's size after one of stats->quantize.quads quads was
+ * refused. Where the size asked was below the fewest quads the cones allow
+ * (the layout came out larger), a quarter more than that becomes the base:
+ * the fewest quads are the most skewed (cheburashka, chair and botijo with
+ * their field's cones at 1K: 1,253 to 1,556 quads refused, 1,575 to 1,993
+ * valid). Otherwise 3% more, then 3% fewer than the base: within 5% of it,
+ * with every arc's length rounded anew (botijo at 5K: 5,000 refused, 4,850
+ * and 5,150 valid). */
+static void next_layout(const sq_remesh_stats *stats, layout_size *L)
+{
+    const double got = stats->quantize.quads, fewest = stats->quantize.min_quads;
+    const int min_limited = fewest > 0 && got <= 1.05 * fewest &&
+                            (L->base_edge > 0 || got > 1.05 * L->base_quads);
+    if (min_limited) {
+        L->base_quads = L->quads = 1.25 * got;
+        L->base_edge = L->edge_length = 0;
+        L->perturbed = 0;
+        return;
+    }
+    const double factor = L->perturbed++ == 0 ? 1.03 : 0.97;
+    if (L->base_edge > 0) L->edge_length = L->base_edge / sqrt(factor);
+    else L->quads = factor * L->base_quads;
+}
+
+/* Forgets a refused layout's figures (stages 5 to 8) but its stage times,
+ * added to t[4] (quantize, extract, smooth, verify). */
+static void refused_layout(sq_remesh_stats *stats, double t[4])
+{
+    t[0] += stats->t_quantize, t[1] += stats->t_extract, t[2] += stats->t_smooth, t[3] += stats->t_verify;
+    memset(&stats->quantize, 0, sizeof stats->quantize);
+    memset(&stats->extract, 0, sizeof stats->extract);
+    memset(&stats->untangle, 0, sizeof stats->untangle);
+    memset(&stats->smooth, 0, sizeof stats->smooth);
+    stats->smoothed = stats->smooth_reverted = 0;
+    stats->smooth_why[0] = 0;
+    stats->smooth_kept = 0;
+    stats->self_intersections = stats->repaired = 0;
+    stats->input_self_intersections = -1;
+    stats->repair_rounds = 0;
+    stats->t_quantize = stats->t_extract = stats->t_smooth = stats->t_verify = 0;
+}
+
 /* One run of the pipeline; *cones (if not NULL) gets a copy of the cones
  * once stage 1 has them, whatever happens after. */
 static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_remesh_options *opt,
@@ -358,7 +597,6 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
     progress_ctx pc = {opt, "cones", 0, 0, 0, 0};
     sq_param P;
     sq_param_init(&P);
-    double *raw = NULL; /* the quads' unsmoothed positions (stage 7) */
     sq_status st = SQ_OK;
 
     /* 1. cones */
@@ -479,159 +717,32 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
     stats->t_optimize = sq_now() - t1;
     if (st) goto fail;
 
-    /* 5. quantize (with its own optimization step) */
-    t1 = sq_now();
-    begin(&pc, stats, "quantize", SHARE_QUANTIZE);
-    sq_quantize_options qo;
-    memset(&qo, 0, sizeof qo);
-    qo.quads = opt->edge_length > 0 ? 0 : opt->quads > 0 ? opt->quads : SQ_REMESH_QUADS;
-    qo.edge_length = opt->edge_length;
-    qo.targets = SQ_TARGETS_MAP;
-    qo.optimize = 1;
-    st = sq_quantize(&M, &qo, &igm, &stats->quantize, err);
-    stats->t_quantize = sq_now() - t1;
-    if (st) goto fail;
-
-    /* 6. extract, untangle */
-    t1 = sq_now();
-    begin(&pc, stats, "extract", SHARE_EXTRACT);
-    st = sq_extract(&igm, &out->quads, &stats->extract, err);
-    if (!st) st = sq_extract_untangle(&igm, &out->quads, &stats->untangle, err);
-    stats->t_extract = sq_now() - t1;
-    if (st) goto fail;
-
-    /* 7. smooth; the smoother untangles what is left folded first */
-    if (!opt->no_smoothing) {
-        t1 = sq_now();
-        begin(&pc, stats, "smooth", SHARE_SMOOTH);
-        st = smooth_stage(m, &out->quads, &pc, &raw, stats, err);
-        stats->t_smooth = sq_now() - t1;
-        if (st) goto fail;
+    /* 5 to 8, from the optimized map: a layout at the size asked; where
+     * its quads are refused (folded, or through each other beyond repair),
+     * other sizes (next_layout) */
+    progress_ctx pc_layout = pc;
+    double refused_t[4] = {0, 0, 0, 0}; /* the refused layouts' stage times */
+    layout_size L;
+    memset(&L, 0, sizeof L);
+    L.base_quads = L.quads = opt->edge_length > 0 ? 0 : opt->quads > 0 ? opt->quads : SQ_REMESH_QUADS;
+    L.base_edge = L.edge_length = opt->edge_length;
+    for (stats->layouts = 1;; stats->layouts++) {
+        st = quads_from_map(m, &M, opt, L.quads, L.edge_length, &pc, out, &igm, stats, err);
+        if (st != SQ_ERR_SOLVER || stats->layouts == SQ_REMESH_LAYOUTS ||
+            !(strcmp(stats->stage, "extract") == 0 || strcmp(stats->stage, "verify") == 0))
+            break;
+        snprintf(stats->layout_why, sizeof stats->layout_why, "%.0f quads: %s: %.120s", stats->quantize.quads,
+                 stats->stage, err ? err->msg : "");
+        next_layout(stats, &L);
+        refused_layout(stats, refused_t);
+        sq_quad_mesh_free(&out->quads);
+        sq_map_free(&igm);
+        double done = pc.done; /* progress never goes back */
+        pc = pc_layout;
+        pc.done = done;
     }
-    /* a quad still folded fails the run */
-    if (!stats->smoothed && stats->untangle.folded_after > 0) {
-        stats->stage = "extract";
-        st = sq_error_set(err, SQ_ERR_SOLVER,
-                          "%u of %u quads stay folded over the surface after untangling (the "
-                          "integer-grid map is too distorted there); more optimizer "
-                          "iterations may help",
-                          stats->untangle.folded_after, out->quads.nq);
-        goto fail;
-    }
-    /* 8. no quad surface through itself where the input is not */
-    t1 = sq_now();
-    begin(&pc, stats, "verify", 1.0 - pc.base - pc.share);
-    st = sq_remesh_quad_intersections(&out->quads, &stats->self_intersections, NULL, 0, err);
-    stats->input_self_intersections = -1;
-    stats->t_verify = sq_now() - t1;
-    if (st) goto fail;
-    if (stats->self_intersections > 0 && raw && stats->untangle.folded_after == 0) {
-        /* the unsmoothed quads, if they pass */
-        double *smoothed = out->quads.pos;
-        uint64_t pairs = 0;
-        out->quads.pos = raw;
-        st = sq_remesh_quad_intersections(&out->quads, &pairs, NULL, 0, err);
-        if (st) {
-            out->quads.pos = smoothed;
-            goto fail;
-        }
-        out->quads.pos = smoothed;
-        if (pairs == 0) {
-            /* the smoothed quads repaired if they can be (where the input
-             * does not intersect itself), else those involved (and rings
-             * around them) put back unsmoothed, else all unsmoothed */
-            uint64_t in = 0, left = 1, found = stats->self_intersections;
-            uint32_t rounds = 0;
-            st = mesh_self_intersections(m, &in, err);
-            if (st) goto fail;
-            stats->input_self_intersections = (int64_t)in;
-            if (in == 0) {
-                st = sq_remesh_repair_intersections(m, &out->quads, &left, &rounds, err);
-                if (st) goto fail;
-            }
-            uint32_t kept = 0;
-            if (left != 0) { /* the repair's best, then the quads involved unsmoothed */
-                st = revert_intersecting(m, &out->quads, raw, &left, &kept, err);
-                if (st) goto fail;
-            }
-            if (left == 0) {
-                stats->repaired = kept ? 0 : found;
-                stats->repair_rounds = rounds;
-                stats->smooth_kept += kept;
-                stats->self_intersections = 0;
-            } else {
-                snprintf(stats->smooth_why, sizeof stats->smooth_why,
-                         "%llu pairs of the smoothed quads' triangles intersect, none of the unsmoothed",
-                         (unsigned long long)found);
-                stats->self_intersections = 0;
-                stats->smoothed = 0;
-                stats->smooth_reverted = 1;
-                out->quads.pos = raw;
-                raw = smoothed;
-            }
-            stats->t_verify = sq_now() - t1;
-        }
-    }
-    if (stats->self_intersections > 0) {
-        uint64_t in = 0;
-        st = mesh_self_intersections(m, &in, err);
-        stats->t_verify = sq_now() - t1;
-        if (st) goto fail;
-        stats->input_self_intersections = (int64_t)in;
-        if (in == 0) { /* the quads around the intersections relaxed on the surface */
-            uint64_t left = 0;
-            st = sq_remesh_repair_intersections(m, &out->quads, &left, &stats->repair_rounds, err);
-            stats->t_verify = sq_now() - t1;
-            if (st) goto fail;
-            if (left > 0 && raw && stats->smoothed && stats->untangle.folded_after == 0) {
-                /* the smoothed quads (and the unsmoothed ones, which
-                 * intersect too) cannot be repaired: the unsmoothed ones
-                 * (none folded) repaired instead, if they can be
-                 * (vmas/pinion at 1K) */
-                double *smoothed = out->quads.pos;
-                uint64_t found = 0, left_raw = 0;
-                uint32_t rounds = 0;
-                out->quads.pos = raw;
-                st = sq_remesh_quad_intersections(&out->quads, &found, NULL, 0, err);
-                if (!st && found) st = sq_remesh_repair_intersections(m, &out->quads, &left_raw, &rounds, err);
-                stats->t_verify = sq_now() - t1;
-                if (st) {
-                    out->quads.pos = smoothed;
-                    goto fail;
-                }
-                if (left_raw == 0) {
-                    snprintf(stats->smooth_why, sizeof stats->smooth_why,
-                             "%llu pairs of the smoothed quads' triangles intersect after the repair",
-                             (unsigned long long)left);
-                    stats->smoothed = 0;
-                    stats->smooth_reverted = 1;
-                    stats->self_intersections = found;
-                    stats->repair_rounds = rounds;
-                    left = 0;
-                    raw = smoothed; /* freed at the end */
-                } else {
-                    out->quads.pos = smoothed;
-                }
-            }
-            stats->repaired = stats->self_intersections - left;
-            stats->self_intersections = left;
-        }
-        if (in == 0 && stats->self_intersections > 0) {
-            st = sq_error_set(err, SQ_ERR_SOLVER,
-                              "%llu pairs of the quads' triangles intersect after %u rounds of "
-                              "relaxing them on the surface (the quad surface passes through itself "
-                              "where the input does not: quads too skewed for the surface's thin "
-                              "parts or near the cones); more optimizer iterations may help",
-                              (unsigned long long)stats->self_intersections, stats->repair_rounds);
-            goto fail;
-        }
-    }
-    /* the smoothed quads' figures are those returned (after the repair and
-     * what went back unsmoothed) */
-    if (stats->smoothed) sq_quad_quality_compute(out->quads.pos, out->quads.nq, out->quads.quad, &stats->smooth.after);
-    /* no quad the referee would reject as degenerate */
-    st = check_final_shapes(m, &out->quads, err);
-    stats->t_verify = sq_now() - t1;
+    stats->t_quantize += refused_t[0], stats->t_extract += refused_t[1];
+    stats->t_smooth += refused_t[2], stats->t_verify += refused_t[3];
     if (st) goto fail;
     report(&pc, 1);
     if (opt->keep_maps) {
@@ -642,13 +753,11 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
     }
     sq_map_free(&M);
     sq_map_free(&igm);
-    free(raw);
     stats->t_total = sq_now() - t0;
     return SQ_OK;
 
 fail:
     stats->t_total = sq_now() - t0;
-    free(raw);
     sq_param_free(&P);
     sq_map_free(&M);
     sq_map_free(&igm);

@@ -70,6 +70,9 @@ extern "C" {
  * after 200; helmet and femur, refused either way, spend 10 s and 1 s
  * more at 600. */
 #define SQ_REMESH_ITERATIONS 600u
+/* Layouts tried from one map (stages 5 to 8) before the run fails: the
+ * size asked, then two others (sq_remesh.c, next_layout). */
+#define SQ_REMESH_LAYOUTS 3u
 
 enum { SQ_REMESH_PARAM_AUTO = 0, SQ_REMESH_PARAM_ALWAYS = 1, SQ_REMESH_PARAM_NEVER = 2 };
 
@@ -142,6 +145,9 @@ typedef struct sq_remesh_stats {
     double t_verify;               /* the self-intersection test             */
     uint64_t repaired;             /* intersecting pairs the repair removed  */
     uint32_t repair_rounds;        /* its rounds (0: nothing to repair)      */
+    uint32_t layouts;              /* layouts tried (stages 5 to 8; 1: the   */
+                                   /* first passed)                          */
+    char layout_why[200];          /* why the last refused one was refused   */
     double t_rotations;            /* stage 2's map on the mesh (tried)      */
     double t_cones, t_param, t_optimize, t_quantize, t_extract, t_smooth, t_total; /* stage 3 in t_optimize */
 } sq_remesh_stats;

@@ -46,6 +46,7 @@ void sq_smooth_options_default(sq_smooth_options *o)
     o->pin_threshold = 0.3;
     o->function_tolerance = 1e-6;
     o->stop_tolerance = 1e-4;
+    o->thorough_stop_tolerance = 1e-3;
     o->gradient_tolerance = 1e-10;
     o->parameter_tolerance = 1e-8;
     o->num_threads = 1;
@@ -652,7 +653,8 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         stats->iterations++;
         double e = sq_smooth_energy(&s.ctx, pos);
         if (opt->progress) opt->progress(opt->progress_user, "smooth", stats->iterations, e, 0);
-        int small = energy - e <= opt->stop_tolerance * energy;
+        const double tol = stats->thorough ? opt->thorough_stop_tolerance : opt->stop_tolerance;
+        int small = energy - e <= tol * energy;
         energy = e;
         if (small && !stats->thorough && e > 0.5 * stats->energy_before) {
             /* the quick steps stalled before removing half the energy
@@ -662,7 +664,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         }
         if (small) {
             snprintf(stats->stop_reason, sizeof stats->stop_reason,
-                     "converged: relative energy decrease below %g", opt->stop_tolerance);
+                     "converged: relative energy decrease below %g", tol);
             break;
         }
     }

@@ -105,6 +105,8 @@ typedef struct sq_smooth_options {
     double function_tolerance, gradient_tolerance, parameter_tolerance; /* Ceres  */
     double stop_tolerance;   /* stop when an outer iteration lowers the energy by */
                              /* less than this, relative (1e-4)                   */
+    double thorough_stop_tolerance; /* the same for thorough iterations (1e-3):  */
+                             /* each costs several quick ones                    */
     int num_threads;         /* Ceres threads (1)                                 */
     /* optional progress report (the library never prints) */
     void (*progress)(void *user, const char *phase, int iteration, double energy, uint32_t folded);

@@ -24,7 +24,10 @@
 #    libigl/decimated-knight's at 1K (cones from the field): quads around a
 #    cone at a sharp tip cut each other until the repair moves the cone;
 #    vmas/pinion's at 1K: the smoothed quads cannot be repaired, the
-#    unsmoothed ones can and are returned;
+#    unsmoothed ones can, and go back there around the intersections;
+#  - libigl/cheburashka at 1K (cones from the field): the layout at the
+#    fewest quads the cones allow passes through itself beyond repair; a
+#    layout a quarter larger is tried and passes;
 #  - smoothing turns no quad over (mpz/fertility_tri at 1K stays smoothed);
 #  - --picture writes an SVG view of the quads;
 #  - the map on the mesh itself by default (param not run), param's map with
@@ -94,7 +97,9 @@ target, max_angle = float(sys.argv[4]), float(sys.argv[5])
 nq = sum(1 for l in open(sys.argv[3]) if l.startswith("f "))
 assert j["ok"] and j["extract"]["quads"] == nq and j["extract"]["folded_after"] == 0, j
 q = j["quantize"]
-assert abs(nq - target) <= 0.05 * target or nq <= 1.05 * q["min_quads"], (nq, q)
+# (a layout refused at the fewest quads is followed by one a quarter larger)
+assert abs(nq - target) <= 0.05 * target or nq <= (1.35 if q["layouts"] > 1 else 1.05) * q["min_quads"], (nq, q)
+assert 1 <= q["layouts"] <= 3 and (q["layouts"] == 1) == (q["layout_refused"] == ""), q
 assert j["extract"]["irregular"] == j["cones"], j
 # the optimizer lowers its own energy (symmetric Dirichlet): the conformal
 # ratio falls from param's maps, and stays low from the map on the mesh
@@ -109,9 +114,12 @@ assert mm["valid"] or not mm["tried"] or (mm["why"] and j["param"]["faces"] > 0)
 for k in ("cones", "map_on_mesh", "param", "optimize", "quantize", "extract", "smooth", "verify", "total"):
     assert j["time_s"][k] >= 0, k
 sm = j["smooth"]
-if sm["smoothed"] and sm["iterations"] > 0:
+# (unless vertices went back to the repaired unsmoothed places, which may
+# be worse than the unrepaired ones "before" measures: pinion at 1K)
+mixed = sm["kept_unsmoothed"] > 0 and j["verify"]["repaired"] > 0
+if sm["smoothed"] and sm["iterations"] > 0 and not mixed:
     assert sm["angle_mean_dev_after"] < sm["angle_mean_dev_before"], sm
-if sm["smoothed"]:
+if sm["smoothed"] and not mixed:
     # no step taken (already smooth): only the re-projection's rounding
     assert sm["angle_mean_dev_after"] <= sm["angle_mean_dev_before"] + 1e-9, sm
     if j["verify"]["repaired"] == 0:  # the repair moves vertices after smoothing
@@ -172,7 +180,9 @@ fi
 # fertility_tri at 1K quads is smoothed from 16.5 to about 7.6 degrees.
 # vmas/pinion at 1K (cones from the field): the smoothed quads pass through
 # themselves beyond repair, the unsmoothed ones too but the repair frees
-# them: the run returns those (not under the sanitizers: 12 s together)
+# them: the smoothed quads are returned with the vertices around the
+# intersections (and rings around them) at their repaired unsmoothed
+# places (not under the sanitizers: 12 s together)
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   remeshes fertility_1k "$shared/data/mpz/fertility_tri.obj" "$shared/data/mpz/fertility_tri_Th_hat" 1000 9
   if python3 -c 'import json,sys; s=json.load(open(sys.argv[1]))["smooth"]; assert s["smoothed"] and not s["reverted"], s' \
@@ -183,11 +193,24 @@ if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   fi
   mkdir -p "$tmp/keep_pinion_1k"
   remeshes pinion_1k "$shared/data/vmas/pinion.off" - 1000 25 --param never --keep "$tmp/keep_pinion_1k"
-  if python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); s=j["smooth"]; assert s["reverted"] and "after the repair" in s["why"] and j["verify"]["repaired"] > 0, j' \
+  if python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); s=j["smooth"]; assert s["smoothed"] and not s["reverted"] and s["kept_unsmoothed"] > 0 and j["verify"]["repaired"] > 0, j' \
       "$tmp/pinion_1k.json" 2>"$tmp/p1.err"; then
-    ok; echo "PASS the unsmoothed quads repaired where the smoothed ones cannot be"
+    ok; echo "PASS the unsmoothed quads repaired where the smoothed ones cannot be, and used around the intersections only"
   else
     bad "unsmoothed repair: $(tail -1 "$tmp/p1.err")"
+  fi
+fi
+# a refused layout and the next size: cheburashka's field cones allow no
+# fewer than about 1,250 quads, which pass through its ears; 1.25 times as
+# many pass (not under the sanitizers: 6 s)
+if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
+  mkdir -p "$tmp/keep_cheb"
+  remeshes cheb "$shared/data/libigl/cheburashka.off" - 1000 12 --param never --keep "$tmp/keep_cheb"
+  if python3 -c 'import json,sys; q=json.load(open(sys.argv[1]))["quantize"]; assert q["layouts"] == 2 and "verify" in q["layout_refused"] and q["quads"] >= 1.2 * q["min_quads"], q' \
+      "$tmp/cheb.json" 2>"$tmp/cheb.err"; then
+    ok; echo "PASS a refused layout at the fewest quads, a larger one valid: $(python3 -c 'import json,sys; q=json.load(open(sys.argv[1]))["quantize"]; print(q["min_quads"], "->", q["quads"], "quads")' "$tmp/cheb.json")"
+  else
+    bad "refused layout: $(tail -1 "$tmp/cheb.err")"
   fi
 fi
 # a cone of valence 2 (rocker_arm's published map at 1K quads): its two
