@@ -1,5 +1,4 @@
 /* seamquad: quads turned over on the surface (sq_extract.h). */
-#include <math.h>
 
 #include "sq_extract.h"
 #include "sq_smooth.h"
@@ -26,7 +25,7 @@ double sq_quad_turn_margin_on(const sq_mesh *m, const double *vn, const double *
         face_normal_if_defined(m, face[k], flat[k]);
         ns[k] = smooth[k], nf[k] = flat[k];
     }
-    return fmax(sq_quad_turn_margin(p, ns), sq_quad_turn_margin(p, nf));
+    return sq_quad_turn_margin_either(p, ns, nf);
 }
 
 sq_status sq_quad_mesh_count_turned(const sq_quad_mesh *Q, const sq_mesh *m, const double *vn,

@@ -185,7 +185,7 @@ static int quad_turned(const smoother *s, const double *pos, const uint32_t *tri
         p[k] = pos + 3 * (size_t)v, ns[k] = sm[k];
         nf[k] = s->thin[t] ? sm[k] : s->tri_normal + 3 * (size_t)t;
     }
-    return fmax(sq_quad_turn_margin(p, ns), sq_quad_turn_margin(p, nf)) < 0.0;
+    return sq_quad_turn_margin_either(p, ns, nf) < 0.0;
 }
 
 /* The acceptance test of a smoothing step (docs/smooth.md, "Acceptance"):

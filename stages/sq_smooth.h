@@ -51,6 +51,14 @@ int sq_triangle_unit_normal(const double *a, const double *b, const double *c, d
  * noise): < 0 exactly when every corner faces away from its n[k]. */
 double sq_quad_turn_margin(const double *const p[4], const double *const n[4]);
 
+/* The turn margin that decides "turned over" (extract's check, the
+ * smoother's acceptance, the repair): the larger of the margins against
+ * the interpolated unit vertex normals `smooth` and the holding
+ * triangles' own normals `flat` (smooth's where a triangle is too thin to
+ * have one): a quad is turned when every corner faces away from both. */
+double sq_quad_turn_margin_either(const double *const p[4], const double *const smooth[4],
+                                  const double *const flat[4]);
+
 void sq_quad_quality_compute(const double *pos, uint32_t nq, const uint32_t *quads,
                              sq_quad_quality *q);
 

@@ -140,3 +140,9 @@ void sq_quad_quality_compute_shapes(const double *pos, uint32_t nq, const uint32
 {
     quality(pos, nq, quads, 0, q);
 }
+
+double sq_quad_turn_margin_either(const double *const p[4], const double *const smooth[4],
+                                  const double *const flat[4])
+{
+    return fmax(sq_quad_turn_margin(p, smooth), sq_quad_turn_margin(p, flat));
+}

@@ -131,6 +131,23 @@ PY
   fi
 }
 
+# json_case LABEL CHECK SHOW FILE...: a case decided by the Python
+# statements CHECK (asserts) over the files' JSON (js; j = js[0]); on
+# success the Python expression SHOW, if not empty, follows the label
+json_case() {
+  local label=$1 check=$2 show=${3:-\"\"} out
+  shift 3
+  if out=$(python3 -c "import json, sys
+js = [json.load(open(f)) for f in sys.argv[1:]]
+j = js[0]
+$check
+print($show)" "$@" 2>"$tmp/json_case.err"); then
+    ok; echo "PASS $label${out:+: $out}"
+  else
+    bad "$label: $(tail -1 "$tmp/json_case.err")"
+  fi
+}
+
 cube=$root/examples/cube.obj
 remeshes cube "$cube" "$root/examples/cube.cones" 1000 8
 remeshes cube_raw "$cube" "$root/examples/cube.cones" 1000 8 --smooth off
@@ -146,12 +163,9 @@ remeshes eight "$shared/data/mpz/eight.obj" "$shared/data/mpz/eight_Th_hat" 5000
   --picture "$tmp/eight.svg"
 # the map on the mesh itself by default (no param), param's with --param always
 remeshes eight_param "$shared/data/mpz/eight.obj" "$shared/data/mpz/eight_Th_hat" 2000 3 --param always
-if python3 -c 'import json,sys; a,b=(json.load(open(f)) for f in sys.argv[1:]); assert a["map_on_mesh"]["valid"] and a["param"]["faces"] == 0 and a["optimize"]["faces_before"] == a["mesh_faces"], a; assert not b["map_on_mesh"]["tried"] and b["param"]["faces"] > b["mesh_faces"], b' \
-    "$tmp/eight.json" "$tmp/eight_param.json" 2>"$tmp/pa.err"; then
-  ok; echo "PASS map on the mesh by default, param's with --param always"
-else
-  bad "--param: $(tail -1 "$tmp/pa.err")"
-fi
+json_case "map on the mesh by default, param's with --param always" \
+  'a, b = js; assert a["map_on_mesh"]["valid"] and a["param"]["faces"] == 0 and a["optimize"]["faces_before"] == a["mesh_faces"], a; assert not b["map_on_mesh"]["tried"] and b["param"]["faces"] > b["mesh_faces"], b' \
+  "" "$tmp/eight.json" "$tmp/eight_param.json"
 # --map: the published map stored in knot1.obj (its vt) instead of param's;
 # --keep then writes no map.obj (the map was given)
 mkdir -p "$tmp/keep_knot1_map"
@@ -169,12 +183,8 @@ fi
 # cut each other after smoothing until the repair moves the cone itself
 mkdir -p "$tmp/keep_knight"
 remeshes knight "$shared/data/libigl/decimated-knight.off" - 1000 12 --param never --keep "$tmp/keep_knight"
-if python3 -c 'import json,sys; v=json.load(open(sys.argv[1]))["verify"]; assert v["repaired"] >= 1 and v["self_intersections"] == 0, v' \
-    "$tmp/knight.json" 2>"$tmp/kn.err"; then
-  ok; echo "PASS repair at a sharp tip: the cone moved"
-else
-  bad "repair at a sharp tip: $(tail -1 "$tmp/kn.err")"
-fi
+json_case "repair at a sharp tip: the cone moved" \
+  'v = j["verify"]; assert v["repaired"] >= 1 and v["self_intersections"] == 0, v' "" "$tmp/knight.json"
 # smoothing never turns a quad over on the surface (its local acceptance
 # reverts one that would be; before, the whole smoothing was undone):
 # fertility_tri at 1K quads is smoothed from 16.5 to about 7.6 degrees.
@@ -185,20 +195,13 @@ fi
 # places (not under the sanitizers: 12 s together)
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   remeshes fertility_1k "$shared/data/mpz/fertility_tri.obj" "$shared/data/mpz/fertility_tri_Th_hat" 1000 9
-  if python3 -c 'import json,sys; s=json.load(open(sys.argv[1]))["smooth"]; assert s["smoothed"] and not s["reverted"], s' \
-      "$tmp/fertility_1k.json" 2>"$tmp/f1.err"; then
-    ok; echo "PASS smoothing kept at 1K: no quad turned over"
-  else
-    bad "smoothing at 1K: $(tail -1 "$tmp/f1.err")"
-  fi
+  json_case "smoothing kept at 1K: no quad turned over" \
+    's = j["smooth"]; assert s["smoothed"] and not s["reverted"], s' "" "$tmp/fertility_1k.json"
   mkdir -p "$tmp/keep_pinion_1k"
   remeshes pinion_1k "$shared/data/vmas/pinion.off" - 1000 25 --param never --keep "$tmp/keep_pinion_1k"
-  if python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); s=j["smooth"]; assert s["smoothed"] and not s["reverted"] and s["kept_unsmoothed"] > 0 and j["verify"]["repaired"] > 0, j' \
-      "$tmp/pinion_1k.json" 2>"$tmp/p1.err"; then
-    ok; echo "PASS the unsmoothed quads repaired where the smoothed ones cannot be, and used around the intersections only"
-  else
-    bad "unsmoothed repair: $(tail -1 "$tmp/p1.err")"
-  fi
+  json_case "the unsmoothed quads repaired where the smoothed ones cannot be, and used around the intersections only" \
+    's = j["smooth"]; assert s["smoothed"] and not s["reverted"] and s["kept_unsmoothed"] > 0 and j["verify"]["repaired"] > 0, j' \
+    "" "$tmp/pinion_1k.json"
 fi
 # a refused layout and the next size: cheburashka's field cones allow no
 # fewer than about 1,250 quads, which pass through its ears; 1.25 times as
@@ -206,12 +209,9 @@ fi
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   mkdir -p "$tmp/keep_cheb"
   remeshes cheb "$shared/data/libigl/cheburashka.off" - 1000 12 --param never --keep "$tmp/keep_cheb"
-  if python3 -c 'import json,sys; q=json.load(open(sys.argv[1]))["quantize"]; assert q["layouts"] == 2 and "verify" in q["layout_refused"] and q["quads"] >= 1.2 * q["min_quads"], q' \
-      "$tmp/cheb.json" 2>"$tmp/cheb.err"; then
-    ok; echo "PASS a refused layout at the fewest quads, a larger one valid: $(python3 -c 'import json,sys; q=json.load(open(sys.argv[1]))["quantize"]; print(q["min_quads"], "->", q["quads"], "quads")' "$tmp/cheb.json")"
-  else
-    bad "refused layout: $(tail -1 "$tmp/cheb.err")"
-  fi
+  json_case "a refused layout at the fewest quads, a larger one valid" \
+    'q = j["quantize"]; assert q["layouts"] == 2 and "verify" in q["layout_refused"] and q["quads"] >= 1.2 * q["min_quads"], q' \
+    '"%.0f -> %.0f quads" % (q["min_quads"], q["quads"])' "$tmp/cheb.json"
 fi
 # a cone of valence 2 (rocker_arm's published map at 1K quads): its two
 # quads both split along the diagonal away from it give two triangles with
@@ -229,12 +229,10 @@ fi
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   remeshes homer_map "$shared/data/mpz/homer.obj" "$shared/data/mpz/homer_Th_hat" 5000 4.5 \
     --map "$shared/data/mpz/homer.obj"
-  if python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); v=j["verify"]; assert v["self_intersections"] == 0 and v["repair_rounds"] >= 1 and v["repaired"] >= 1 and j["smooth"]["smoothed"], j' \
-      "$tmp/homer_map.json" 2>"$tmp/hm.err"; then
-    ok; echo "PASS repair: $(python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); v=j["verify"]; print(v["repaired"], "intersecting pairs removed in", v["repair_rounds"], "rounds,", j["smooth"]["kept_unsmoothed"], "vertices kept unsmoothed")' "$tmp/homer_map.json")"
-  else
-    bad "repair: $(cat "$tmp/hm.err")"
-  fi
+  json_case "repair" \
+    'v = j["verify"]; assert v["self_intersections"] == 0 and v["repair_rounds"] >= 1 and v["repaired"] >= 1 and j["smooth"]["smoothed"], j' \
+    '"%d intersecting pairs removed in %d rounds, %d vertices kept unsmoothed" % (v["repaired"], v["repair_rounds"], j["smooth"]["kept_unsmoothed"])' \
+    "$tmp/homer_map.json"
 fi
 # the picture: an SVG of the quads facing the viewer (about half of them)
 nq=$(grep -c '^f ' "$tmp/eight.obj" 2>/dev/null || echo 0)
