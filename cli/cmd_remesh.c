@@ -57,10 +57,11 @@ static void help(FILE *f)
             "            the quads involved are relaxed on MESH (cones too, no quad\n"
             "            folded) for up to 20 rounds; a pair left (or a quad left\n"
             "            folded at extract) refuses the layout, and quantize to\n"
-            "            verify run again from the same map at another size: a\n"
-            "            quarter above the fewest quads the cones allow where the\n"
-            "            layout had those, else 3%% above, then 3%% below the size\n"
-            "            asked; three layouts refused fail the run\n"
+            "            verify run again from the same map: at a quarter above the\n"
+            "            fewest quads the cones allow where the layout had those,\n"
+            "            else with the arcs' lengths on the surface instead of in\n"
+            "            the map as targets, then both 3%% above the size asked;\n"
+            "            four layouts refused fail the run\n"
             "  export    with --step, --iges or --limit: the quads' Catmull-Clark\n"
             "            surface (OpenSubdiv) as B-spline patches or a limit mesh, as\n"
             "            `seamquad subdiv` writes them\n"
@@ -231,7 +232,8 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
         printf(" (the fewest this layout allows)");
     printf(", T-mesh of %u rectangles, %.2f s\n", s->quantize.faces, s->t_quantize);
     if (s->layouts > 1)
-        printf("              layout %u of the sizes tried; the last refused: %s\n", s->layouts, s->layout_why);
+        printf("              layout %u of those tried (targets in the %s); the last refused: %s\n", s->layouts,
+               s->layout_targets == SQ_TARGETS_MAP ? "map" : "surface", s->layout_why);
     printf("extract       %u quads, %u vertices, %u irregular; %u folded quads relaxed; %.2f s\n",
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before, s->t_extract);
     if (s->smoothed) {
@@ -297,8 +299,9 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     sq_json_string(stdout, s->optimize.why);
     printf("}");
     printf(",\n  \"quantize\": {\"quads\": %.0f, \"min_quads\": %.0f, \"tmesh_faces\": %u, \"layouts\": %u, "
-           "\"layout_refused\": ",
-           s->quantize.quads, s->quantize.min_quads, s->quantize.faces, s->layouts);
+           "\"targets\": \"%s\", \"layout_refused\": ",
+           s->quantize.quads, s->quantize.min_quads, s->quantize.faces, s->layouts,
+           s->layout_targets == SQ_TARGETS_MAP ? "map" : "surface");
     sq_json_string(stdout, s->layout_why);
     printf(", \"seconds\": %.6f}", s->t_quantize);
     printf(",\n  \"extract\": {\"quads\": %u, \"vertices\": %u, \"irregular\": %u, \"folded_before\": %u, "

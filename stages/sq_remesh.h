@@ -71,8 +71,8 @@ extern "C" {
  * more at 600. */
 #define SQ_REMESH_ITERATIONS 600u
 /* Layouts tried from one map (stages 5 to 8) before the run fails: the
- * size asked, then two others (sq_remesh.c, next_layout). */
-#define SQ_REMESH_LAYOUTS 3u
+ * size asked, then three others (sq_remesh.c, next_layout). */
+#define SQ_REMESH_LAYOUTS 4u
 
 enum { SQ_REMESH_PARAM_AUTO = 0, SQ_REMESH_PARAM_ALWAYS = 1, SQ_REMESH_PARAM_NEVER = 2 };
 
@@ -148,6 +148,8 @@ typedef struct sq_remesh_stats {
     uint32_t layouts;              /* layouts tried (stages 5 to 8; 1: the   */
                                    /* first passed)                          */
     char layout_why[200];          /* why the last refused one was refused   */
+    int layout_targets;            /* the arcs' targets of the one returned  */
+                                   /* (SQ_TARGETS_MAP or _SURFACE)           */
     double t_rotations;            /* stage 2's map on the mesh (tried)      */
     double t_cones, t_param, t_optimize, t_quantize, t_extract, t_smooth, t_total; /* stage 3 in t_optimize */
 } sq_remesh_stats;

@@ -25,6 +25,8 @@
 #    cone at a sharp tip cut each other until the repair moves the cone;
 #    vmas/pinion's at 1K: the smoothed quads cannot be repaired, the
 #    unsmoothed ones can, and go back there around the intersections;
+#  - mpz/femur at 5K: the layout with the arcs' targets from the map
+#    passes through itself beyond repair, the one from the surface passes;
 #  - libigl/cheburashka at 1K (cones from the field): the layout at the
 #    fewest quads the cones allow passes through itself beyond repair; a
 #    layout a quarter larger is tried and passes;
@@ -99,7 +101,8 @@ assert j["ok"] and j["extract"]["quads"] == nq and j["extract"]["folded_after"] 
 q = j["quantize"]
 # (a layout refused at the fewest quads is followed by one a quarter larger)
 assert abs(nq - target) <= 0.05 * target or nq <= (1.35 if q["layouts"] > 1 else 1.05) * q["min_quads"], (nq, q)
-assert 1 <= q["layouts"] <= 3 and (q["layouts"] == 1) == (q["layout_refused"] == ""), q
+assert 1 <= q["layouts"] <= 4 and (q["layouts"] == 1) == (q["layout_refused"] == ""), q
+assert q["targets"] in ("map", "surface") and (q["layouts"] > 1 or q["targets"] == "map"), q
 assert j["extract"]["irregular"] == j["cones"], j
 # the optimizer lowers its own energy (symmetric Dirichlet): the conformal
 # ratio falls from param's maps, and stays low from the map on the mesh
@@ -212,6 +215,16 @@ if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   json_case "a refused layout at the fewest quads, a larger one valid" \
     'q = j["quantize"]; assert q["layouts"] == 2 and "verify" in q["layout_refused"] and q["quads"] >= 1.2 * q["min_quads"], q' \
     '"%.0f -> %.0f quads" % (q["min_quads"], q["quads"])' "$tmp/cheb.json"
+fi
+# the other targets: femur's cones at 5K, arcs rounded from their lengths
+# in the map, give quads through each other beside its clusters of cones
+# beyond repair; from their lengths on the surface, a valid layout (not
+# under the sanitizers: 7 s)
+if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
+  remeshes femur_5k "$shared/data/mpz/femur.obj" "$shared/data/mpz/femur_Th_hat" 5000 9
+  json_case "a refused layout, the same size with the surface's targets valid" \
+    'q = j["quantize"]; assert q["layouts"] == 2 and q["targets"] == "surface" and "(targets in the map): verify" in q["layout_refused"], q' \
+    '"%.0f quads, layout %d" % (q["quads"], q["layouts"])' "$tmp/femur_5k.json"
 fi
 # a cone of valence 2 (rocker_arm's published map at 1K quads): its two
 # quads both split along the diagonal away from it give two triangles with
