@@ -45,8 +45,9 @@ static void help(FILE *f)
             "  quantize  the integer-grid map at the size asked (`seamquad quantize`)\n"
             "  extract   the quad mesh of its integer grid; quads folded over the\n"
             "            surface are relaxed, and any left fail the run\n"
-            "  smooth    the vertices moved on MESH toward right angles and even edges,\n"
-            "            then some held on MESH's sharp points where the quads would\n"
+            "  smooth    first, where the unsmoothed quads pass through each other,\n"
+            "            verify's repair on them (below); then the vertices moved on\n"
+            "            MESH toward right angles and even edges, then some held on MESH's sharp points where the quads would\n"
             "            cut them off (`seamquad smooth`); no step folds a quad; where\n"
             "            the smoothed quads turn over, or fail verify even after its\n"
             "            repair, the vertices involved go back to their unsmoothed\n"
@@ -254,6 +255,9 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
            "              every vertex on the surface, no quad folded; %llu intersecting triangle\n"
            "              pairs (CGAL, each quad split along its shorter diagonal), %.2f s\n",
            (unsigned long long)s->self_intersections, s->t_verify);
+    if (s->repaired_unsmoothed)
+        printf("repaired      %llu intersecting pairs of the unsmoothed quads removed before smoothing\n",
+               (unsigned long long)s->repaired_unsmoothed);
     if (s->repaired)
         printf("repaired      %llu intersecting pairs removed by relaxing their quads on the surface\n"
                "              (%u rounds)\n",
@@ -319,9 +323,10 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     printf(", \"seconds\": %.6f}", s->t_smooth);
     if (surf->S.np) printf(",\n  \"export\": {\"patches\": %u, \"seconds\": %.6f}", surf->S.np, surf->seconds);
     printf(",\n  \"verify\": {\"self_intersections\": %llu, \"input_self_intersections\": %lld, "
-           "\"repaired\": %llu, \"repair_rounds\": %u, \"seconds\": %.6f}",
+           "\"repaired_unsmoothed\": %llu, \"repaired\": %llu, \"repair_rounds\": %u, \"seconds\": %.6f}",
            (unsigned long long)s->self_intersections, (long long)s->input_self_intersections,
-           (unsigned long long)s->repaired, s->repair_rounds, s->t_verify);
+           (unsigned long long)s->repaired_unsmoothed, (unsigned long long)s->repaired, s->repair_rounds,
+           s->t_verify);
     printf(",\n  \"time_s\": {\"cones\": %.6f, \"map_on_mesh\": %.6f, \"param\": %.6f, \"optimize\": %.6f, "
            "\"quantize\": %.6f, \"extract\": %.6f, \"smooth\": %.6f, \"verify\": %.6f, "
            "\"export\": %.6f, \"total\": %.6f}",

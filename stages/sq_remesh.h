@@ -143,6 +143,8 @@ typedef struct sq_remesh_stats {
     int64_t input_self_intersections; /* the input's, when the quads have    */
                                    /* some (-1: not computed)                */
     double t_verify;               /* the self-intersection test             */
+    uint64_t repaired_unsmoothed;  /* pairs of the unsmoothed quads the      */
+                                   /* repair removed before smoothing        */
     uint64_t repaired;             /* intersecting pairs the repair removed  */
     uint32_t repair_rounds;        /* its rounds (0: nothing to repair)      */
     uint32_t layouts;              /* layouts tried (stages 5 to 8; 1: the   */
