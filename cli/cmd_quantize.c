@@ -364,7 +364,7 @@ int sq_cmd_quantize(int argc, char **argv)
     if (!st) {
         stage = "quantize";
         sq_quantize_options opt = {have_quads ? r.quads : 0, have_len ? r.edge_length : 0, r.targets,
-                                   r.optimize};
+                                   r.optimize, 0};
         st = sq_quantize(&M, &opt, &igm, &r.st, &err);
     }
     if (!st) {

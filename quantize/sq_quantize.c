@@ -265,7 +265,7 @@ sq_status sq_quantize(const sq_map *M, const sq_quantize_options *opt, sq_map *i
         sq_optimize_options oo;
         memset(&oo, 0, sizeof oo);
         oo.basis = SQ_OPTIMIZE_FIXED_TRANSITIONS;
-        oo.max_iterations = 20;
+        oo.max_iterations = opt->optimize_iterations ? opt->optimize_iterations : 20;
         oo.tolerance = 1e-3;
         oo.reference_bound = INFINITY;
         st = sq_optimize_map(igm, &oo, &stats->optimize, err);

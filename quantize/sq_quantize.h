@@ -49,6 +49,7 @@ typedef struct sq_quantize_options {
     double edge_length; /* requested quad edge length on the surface (> 0)   */
     int targets;        /* SQ_TARGETS_SURFACE (default) or SQ_TARGETS_MAP     */
     int optimize;       /* 1: step 5 (sq_quantize only, not _chords)         */
+    uint32_t optimize_iterations; /* step 5's Newton steps at most (0: 20)   */
 } sq_quantize_options;
 
 typedef struct sq_quantize_stats {

@@ -393,6 +393,7 @@ static sq_status quads_from_map(const sq_mesh *m, const sq_map *M, const sq_reme
     qo.edge_length = edge_length;
     qo.targets = targets;
     qo.optimize = 1;
+    qo.optimize_iterations = M->mesh.nf >= SQ_REMESH_STEP5_CAP_FACES ? SQ_REMESH_STEP5_ITERATIONS : 0;
     st = sq_quantize(M, &qo, igm, &stats->quantize, err);
     stats->t_quantize = sq_now() - t1;
     if (st) goto done;

@@ -177,7 +177,7 @@ static void quantized(const char *name, double quads, model *md, sq_map *igm)
     load(name, md);
     if (sq_map_from_soup(&md->soup, &md->mesh, md->valence, 1e-9, 0, &M, NULL, &err))
         fail_msg("%s: %s", name, err.msg);
-    sq_quantize_options qo = {quads, 0, SQ_TARGETS_MAP, 0};
+    sq_quantize_options qo = {quads, 0, SQ_TARGETS_MAP, 0, 0};
     if (sq_quantize(&M, &qo, igm, NULL, &err)) fail_msg("%s: %s", name, err.msg);
     sq_map_free(&M);
 }
@@ -373,7 +373,7 @@ static void param_igm_case(const model *md, int tree, int must_lower)
         fail_msg("param map read back: %s", err.msg);
     unlink(path);
     sq_param_free(&P);
-    sq_quantize_options qo = {1000, 0, SQ_TARGETS_MAP, 0};
+    sq_quantize_options qo = {1000, 0, SQ_TARGETS_MAP, 0, 0};
     if (sq_quantize(&M, &qo, &igm, NULL, &err)) fail_msg("quantize: %s", err.msg);
     const sq_mesh *m = &igm.mesh;
     uint8_t *rot = malloc(m->nh);
@@ -723,7 +723,7 @@ static void test_free_or_fixed(void **state)
  * after untangling */
 static uint32_t bad_quads_after_untangling(const sq_map *M, double quads)
 {
-    sq_quantize_options qo = {quads, 0, SQ_TARGETS_MAP, 1};
+    sq_quantize_options qo = {quads, 0, SQ_TARGETS_MAP, 1, 0};
     sq_map igm;
     sq_quad_mesh Q;
     sq_untangle_stats us;

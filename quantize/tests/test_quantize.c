@@ -127,7 +127,7 @@ static void test_published_maps(void **state)
         sq_map M;
         load_map(MODELS[i], &M);
         for (int k = 0; k < (lng ? 3 : 1); k++) {
-            sq_quantize_options opt = {sizes[k], 0, SQ_TARGETS_MAP, 0};
+            sq_quantize_options opt = {sizes[k], 0, SQ_TARGETS_MAP, 0, 0};
             sq_quantize_stats st;
             sq_map igm;
             sq_error err;
@@ -149,7 +149,7 @@ static void test_integer_map_reproduced(void **state)
     (void)state;
     sq_map M, igm, again;
     load_map("eight", &M);
-    sq_quantize_options opt = {400, 0, SQ_TARGETS_MAP, 0};
+    sq_quantize_options opt = {400, 0, SQ_TARGETS_MAP, 0, 0};
     sq_quantize_stats st;
     sq_error err;
     assert_int_equal(sq_quantize(&M, &opt, &igm, &st, &err), SQ_OK);
@@ -168,7 +168,7 @@ static void test_integer_map_reproduced(void **state)
                 ch[n++] = (sq_chord){f, (uint8_t)a, c, -INFINITY, INFINITY};
             }
     }
-    sq_quantize_options same = {quads, 0, SQ_TARGETS_MAP, 0};
+    sq_quantize_options same = {quads, 0, SQ_TARGETS_MAP, 0, 0};
     sq_status s = sq_quantize_chords(&igm, ch, n, &same, &again, &st, &err);
     if (s) fail_msg("%s", err.msg);
     assert_int_equal(st.faces, (uint32_t)quads); /* every unit square a face */
@@ -186,15 +186,15 @@ static void test_bad_requests(void **state)
     sq_map M, igm;
     load_map("knot1", &M);
     sq_error err;
-    const sq_quantize_options bad[] = {{0, 0, SQ_TARGETS_MAP, 0}, {-5, 0, SQ_TARGETS_MAP, 0}, {2e8, 0, SQ_TARGETS_MAP, 0},
-                                       {0, -1, SQ_TARGETS_MAP, 0}, {100, 0, 7, 0}};
+    const sq_quantize_options bad[] = {{0, 0, SQ_TARGETS_MAP, 0, 0}, {-5, 0, SQ_TARGETS_MAP, 0, 0}, {2e8, 0, SQ_TARGETS_MAP, 0, 0},
+                                       {0, -1, SQ_TARGETS_MAP, 0, 0}, {100, 0, 7, 0, 0}};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         assert_int_equal(sq_quantize(&M, &bad[k], &igm, NULL, &err), SQ_ERR_ARGUMENT);
         assert_non_null(strstr(err.msg, "quantize"));
     }
     assert_int_equal(sq_quantize(&M, NULL, &igm, NULL, &err), SQ_ERR_ARGUMENT);
     /* below the minimum: the minimum is built and reported */
-    sq_quantize_options tiny = {1, 0, SQ_TARGETS_MAP, 0};
+    sq_quantize_options tiny = {1, 0, SQ_TARGETS_MAP, 0, 0};
     sq_quantize_stats st;
     assert_int_equal(sq_quantize(&M, &tiny, &igm, &st, &err), SQ_OK);
     assert_true(st.min_quads > 1 && st.quads == st.min_quads);

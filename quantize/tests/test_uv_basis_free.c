@@ -445,7 +445,7 @@ static void test_quantized_maps(void **state)
         sq_map M, igm;
         sq_error err;
         read_mpz(name, &M);
-        sq_quantize_options opt = {1000, 0, SQ_TARGETS_MAP, 0};
+        sq_quantize_options opt = {1000, 0, SQ_TARGETS_MAP, 0, 0};
         if (sq_quantize(&M, &opt, &igm, NULL, &err)) fail_msg("quantize %s: %s", name, err.msg);
         char label[64];
         snprintf(label, sizeof label, "%s (igm)", name);
