@@ -156,7 +156,8 @@ typedef struct sq_remesh_stats {
                                    /* shorter diagonal; CGAL)                */
     int64_t input_self_intersections; /* the input's, when the quads have    */
                                    /* some (-1: not computed)                */
-    double t_verify;               /* the self-intersection test             */
+    double t_verify;               /* the self-intersection tests and the    */
+                                   /* repairs (before smoothing too)         */
     uint64_t repaired_unsmoothed;  /* pairs of the unsmoothed quads the      */
                                    /* repair removed before smoothing        */
     uint64_t repaired;             /* intersecting pairs the repair removed  */
