@@ -207,21 +207,18 @@ if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
     's = j["smooth"]; assert s["smoothed"] and not s["reverted"] and s["kept_unsmoothed"] > 0 and j["verify"]["repaired"] > 0, j' \
     "" "$tmp/pinion_1k.json"
 fi
-# a refused layout and the next size: cheburashka's field cones allow no
-# fewer than about 1,250 quads, which pass through its ears; 1.25 times as
-# many pass (not under the sanitizers: 6 s)
+# refused layouts and the next ones (not under the sanitizers: 13 s):
+# cheburashka's field cones allow no fewer than about 1,250 quads, which
+# pass through its ears; 1.25 times as many pass. femur's cones at 5K,
+# arcs rounded from their lengths in the map, give quads through each
+# other beside its clusters of cones beyond repair; from their lengths on
+# the surface, a valid layout
 if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   mkdir -p "$tmp/keep_cheb"
   remeshes cheb "$shared/data/libigl/cheburashka.off" - 1000 12 --param never --keep "$tmp/keep_cheb"
   json_case "a refused layout at the fewest quads, a larger one valid" \
     'q = j["quantize"]; assert q["layouts"] == 2 and "verify" in q["layout_refused"] and q["quads"] >= 1.2 * q["min_quads"], q' \
     '"%.0f -> %.0f quads" % (q["min_quads"], q["quads"])' "$tmp/cheb.json"
-fi
-# the other targets: femur's cones at 5K, arcs rounded from their lengths
-# in the map, give quads through each other beside its clusters of cones
-# beyond repair; from their lengths on the surface, a valid layout (not
-# under the sanitizers: 7 s)
-if [ "${SQ_SANITIZE:-OFF}" != ON ]; then
   remeshes femur_5k "$shared/data/mpz/femur.obj" "$shared/data/mpz/femur_Th_hat" 5000 10
   json_case "a refused layout, the same size with the surface's targets valid" \
     'q = j["quantize"]; assert q["layouts"] == 2 and q["targets"] == "surface" and "(targets in the map): verify" in q["layout_refused"], q' \
