@@ -735,7 +735,10 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
     }
     t1 = sq_now();
     if (!stats->from_map && !stats->map_from_rotations) {
-        begin(&pc, stats, "param", SHARE_PARAM);
+        if (strcmp(pc.stage, "map") == 0) /* param takes over the map's share */
+            pc.stage = "param", stats->stage = "param";
+        else
+            begin(&pc, stats, "param", SHARE_PARAM);
         sq_param_options po;
         sq_param_options_default(&po);
         po.seed = opt->seed ? opt->seed : 1;
