@@ -255,6 +255,7 @@ typedef struct steer_ws {
     uint32_t *fmark;        /* nf: stamps                                    */
     uint32_t stamp;
     double penalty;
+    double *len;            /* nh: edge lengths (sq_cut_he_length)           */
     sq_cut_heap heap;
 } steer_ws;
 
@@ -264,13 +265,28 @@ static int is_free(const steer_ws *w, uint32_t v)
 }
 
 /* Shortest-path forest over free vertices from the inner vertices of side
- * s (each through the wedge on the disk's side). 0: out of memory. */
-static int side_dijkstra(steer_ws *w, const sq_cut_graph *G, uint32_t lo, uint32_t hi, forest *F)
+ * s (each through the wedge on the disk's side). With a cone c (not
+ * SQ_NONE) it stops once every free vertex of c's ring is settled: their
+ * dist, par and src, and those of their paths, are the whole forest's;
+ * other vertices' may be tentative. 0: out of memory. */
+static int side_dijkstra(steer_ws *w, const sq_cut_graph *G, uint32_t lo, uint32_t hi, uint32_t c_stop,
+                         forest *F)
 {
     const sq_mesh *m = w->m;
     double *dist = F->dist;
     uint32_t *par = F->par, *src = F->src;
     for (uint32_t v = 0; v < m->nv; ++v) dist[v] = INFINITY;
+    uint32_t left = 0; /* c_stop's free ring vertices not yet settled */
+    const uint32_t ring = ++w->stamp;
+    if (c_stop != SQ_NONE) {
+        const uint32_t h0 = m->v_he[c_stop];
+        uint32_t h = h0;
+        do {
+            const uint32_t a = sq_cut_dest(m, h);
+            if (is_free(w, a) && w->mark[a] != ring) w->mark[a] = ring, ++left;
+            h = sq_cut_rot(m, h);
+        } while (h != h0);
+    }
     w->heap.n = 0;
     const uint32_t B = G->side_off[G->pattern.k];
     for (uint32_t n = lo; n <= hi; ++n) {
@@ -280,7 +296,7 @@ static int side_dijkstra(steer_ws *w, const sq_cut_graph *G, uint32_t lo, uint32
         for (uint32_t c = m->he_next[G->side_he[(n + B - 1) % B]]; !w->cut[c]; c = sq_cut_rot(m, c)) {
             const uint32_t y = sq_cut_dest(m, c);
             if (!is_free(w, y)) continue;
-            const double l = sq_cut_he_length(m, c) + (w->near[y] ? w->penalty : 0.0);
+            const double l = w->len[c] + (w->near[y] ? w->penalty : 0.0);
             if (l < dist[y]) {
                 dist[y] = l, par[y] = c, src[y] = n;
                 if (!sq_cut_heap_push(&w->heap, l, y)) return 0;
@@ -291,12 +307,16 @@ static int side_dijkstra(steer_ws *w, const sq_cut_graph *G, uint32_t lo, uint32
     uint32_t x;
     while (sq_cut_heap_pop(&w->heap, &d, &x)) {
         if (d > dist[x]) continue;
+        if (left && w->mark[x] == ring) {
+            w->mark[x] = 0;
+            if (--left == 0) break;
+        }
         const uint32_t h0 = m->v_he[x];
         uint32_t h = h0;
         do {
             const uint32_t y = sq_cut_dest(m, h);
             if (is_free(w, y)) {
-                const double nd = d + sq_cut_he_length(m, h) + (w->near[y] ? w->penalty : 0.0);
+                const double nd = d + w->len[h] + (w->near[y] ? w->penalty : 0.0);
                 if (nd < dist[y]) {
                     dist[y] = nd, par[y] = h, src[y] = src[x];
                     if (!sq_cut_heap_push(&w->heap, nd, y)) return 0;
@@ -507,7 +527,7 @@ static int cone_detours(steer_ws *w, const sq_cut_graph *G, const int32_t *valen
         const forest *A = &F[0], *Bf = &F[0];
         if (pass == 1) {
             if (x0 == SQ_NONE || x0 <= lo || x0 >= hi) break;
-            if (!side_dijkstra(w, G, lo, x0, &F[1]) || !side_dijkstra(w, G, x0 + 1, hi, &F[2])) return 0;
+            if (!side_dijkstra(w, G, lo, x0, c, &F[1]) || !side_dijkstra(w, G, x0 + 1, hi, c, &F[2])) return 0;
             A = &F[1], Bf = &F[2];
         }
         const uint32_t h0 = m->v_he[c];
@@ -528,7 +548,7 @@ static int cone_detours(steer_ws *w, const sq_cut_graph *G, const int32_t *valen
                 int bad = 0;
                 const long q = region_index(w, G, na, nb, valence, n, &bad);
                 if (bad || q % 4 == 0) continue;
-                const double len = A->dist[a] + Bf->dist[b] + sq_cut_he_length(m, ab);
+                const double len = A->dist[a] + Bf->dist[b] + w->len[ab];
                 uint32_t dup = nc;
                 for (uint32_t x = 0; x < nc; ++x)
                     if (cand[x].q == q) dup = x;
@@ -615,6 +635,7 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     w.cut = malloc(m->nh);
     w.cutdeg = malloc((size_t)m->nv * sizeof *w.cutdeg);
     w.near = malloc((size_t)m->nv * sizeof *w.near);
+    w.len = malloc((size_t)m->nh * sizeof *w.len);
     forest F[3];
     int fok = 1;
     for (int f = 0; f < 3; ++f) {
@@ -635,13 +656,13 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     if (straight0) memcpy(straight0, G->pattern.straight, G->pattern.k);
     mismatch M;
     memset(&M, 0, sizeof M);
-    if (!cone || !blocked || !he_cut0 || !straight0 || !w.cut || !w.cutdeg || !w.near || !fok || !near_cone || !w.route ||
-        !w.mark || !w.fstack || !w.fmark || !sq_cut_heap_init(&w.heap, m->nv + 16)) {
+    if (!cone || !blocked || !he_cut0 || !straight0 || !w.cut || !w.cutdeg || !w.near || !w.len || !fok ||
+        !near_cone || !w.route || !w.mark || !w.fstack || !w.fmark || !sq_cut_heap_init(&w.heap, m->nv + 16)) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (steer)");
         goto done;
     }
     double mean = 0.0;
-    for (uint32_t h = 0; h < m->nh; ++h) mean += sq_cut_he_length(m, h);
+    for (uint32_t h = 0; h < m->nh; ++h) mean += w.len[h] = sq_cut_he_length(m, h);
     w.penalty = PENALTY_EDGES * mean / m->nh;
     for (uint32_t v = 0; v < m->nv; ++v) cone[v] = valence[v] != 4;
     if (!compute_mismatch(m, G, turn, blocked, &M)) {
@@ -671,7 +692,7 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
             const uint32_t sides[2] = {i, G->pattern.partner[i]};
             for (int si = 0; si < 2; ++si) {
                 const uint32_t s = sides[si], lo = G->side_off[s], hi = G->side_off[s + 1];
-                if (!side_dijkstra(&w, G, lo, hi, &F[0])) goto nomem;
+                if (!side_dijkstra(&w, G, lo, hi, SQ_NONE, &F[0])) goto nomem;
                 const uint32_t nnear = nearest_cones(&w, &F[0], near_cone);
                 for (uint32_t ci = 0; ci < nnear; ++ci) {
                     const uint32_t c = near_cone[ci].c;
@@ -737,7 +758,7 @@ finish:
     if (stats) *stats = S;
 done:
     mismatch_free(&M);
-    free(cone), free(blocked), free(he_cut0), free(straight0), free(w.cut), free(w.cutdeg), free(w.near), free(near_cone);
+    free(cone), free(blocked), free(he_cut0), free(straight0), free(w.cut), free(w.cutdeg), free(w.near), free(w.len), free(near_cone);
     for (int f = 0; f < 3; ++f) free(F[f].dist), free(F[f].par), free(F[f].src);
     free(w.route), free(w.mark), free(w.fstack), free(w.fmark);
     sq_cut_heap_free(&w.heap);
