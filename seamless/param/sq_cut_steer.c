@@ -236,13 +236,28 @@ done:
  * vertices gives the detour x ~> a -> b ~> y. */
 
 #define PENALTY_EDGES 3.0
+#define NEAR_CONES 16 /* the cones tried per side, nearest first */
 
-/* Shortest paths from side vertices: dist, the halfedge into v (par) and
- * the side_he index n of the vertex the path starts at (src). */
+/* Shortest paths from side vertices side_he lo..hi: dist, the halfedge
+ * into v (par) and the side_he index n of the vertex the path starts at
+ * (src), grown on demand (forest_grow) and resumable: the vertices settled
+ * so far are those of the whole forest, whatever the stops. dist, par and
+ * src of v hold only where vis[v] == stamp (fdist: INFINITY elsewhere), so
+ * a new forest costs no pass over the vertices. */
 typedef struct forest {
     double *dist;
     uint32_t *par, *src;
+    uint32_t *vis;  /* nv: stamp where dist, par, src are set */
+    uint32_t *done; /* nv: stamp where settled                */
+    uint32_t stamp, lo, hi;
+    int live;       /* lo, hi grown on the current cut         */
+    sq_cut_heap heap;
 } forest;
+
+static double fdist(const forest *F, uint32_t v)
+{
+    return F->vis[v] == F->stamp ? F->dist[v] : INFINITY;
+}
 
 typedef struct steer_ws {
     const sq_mesh *m;
@@ -256,7 +271,6 @@ typedef struct steer_ws {
     uint32_t stamp;
     double penalty;
     double *len;            /* nh: edge lengths (sq_cut_he_length)           */
-    sq_cut_heap heap;
 } steer_ws;
 
 static int is_free(const steer_ws *w, uint32_t v)
@@ -264,30 +278,41 @@ static int is_free(const steer_ws *w, uint32_t v)
     return w->cutdeg[v] == 0 && !(w->cone && w->cone[v]);
 }
 
-/* Shortest-path forest over free vertices from the inner vertices of side
- * s (each through the wedge on the disk's side). With a cone c (not
- * SQ_NONE) it stops once every free vertex of c's ring is settled: their
- * dist, par and src, and those of their paths, are the whole forest's;
- * other vertices' may be tentative. 0: out of memory. */
-static int side_dijkstra(steer_ws *w, const sq_cut_graph *G, uint32_t lo, uint32_t hi, uint32_t c_stop,
-                         forest *F)
+/* Marks cone c's free ring vertices not yet settled in F (stamp ring),
+ * counting them in *left. */
+static void mark_ring(steer_ws *w, const forest *F, uint32_t c, uint32_t ring, uint32_t *left)
 {
     const sq_mesh *m = w->m;
-    double *dist = F->dist;
-    uint32_t *par = F->par, *src = F->src;
-    for (uint32_t v = 0; v < m->nv; ++v) dist[v] = INFINITY;
-    uint32_t left = 0; /* c_stop's free ring vertices not yet settled */
-    const uint32_t ring = ++w->stamp;
-    if (c_stop != SQ_NONE) {
-        const uint32_t h0 = m->v_he[c_stop];
-        uint32_t h = h0;
-        do {
-            const uint32_t a = sq_cut_dest(m, h);
-            if (is_free(w, a) && w->mark[a] != ring) w->mark[a] = ring, ++left;
-            h = sq_cut_rot(m, h);
-        } while (h != h0);
+    const uint32_t h0 = m->v_he[c];
+    uint32_t h = h0;
+    do {
+        const uint32_t a = sq_cut_dest(m, h);
+        if (is_free(w, a) && w->mark[a] != ring && F->done[a] != F->stamp) w->mark[a] = ring, ++*left;
+        h = sq_cut_rot(m, h);
+    } while (h != h0);
+}
+
+/* dist[y] := d through halfedge h from side vertex n where shorter. */
+static int relax(forest *F, uint32_t y, double d, uint32_t h, uint32_t n)
+{
+    if (!(d < fdist(F, y))) return 1;
+    F->vis[y] = F->stamp, F->dist[y] = d, F->par[y] = h, F->src[y] = n;
+    return sq_cut_heap_push(&F->heap, d, y);
+}
+
+/* F := the forest of side_he lo..hi with nothing settled: the first step
+ * from each inner vertex of the side, through the wedge on the disk's
+ * side. 0: out of memory. */
+static int forest_start(steer_ws *w, const sq_cut_graph *G, uint32_t lo, uint32_t hi, forest *F)
+{
+    const sq_mesh *m = w->m;
+    if (++F->stamp == 0) { /* wrapped: every stamp void */
+        memset(F->vis, 0, (size_t)m->nv * sizeof *F->vis);
+        memset(F->done, 0, (size_t)m->nv * sizeof *F->done);
+        F->stamp = 1;
     }
-    w->heap.n = 0;
+    F->lo = lo, F->hi = hi, F->live = 1;
+    F->heap.n = 0;
     const uint32_t B = G->side_off[G->pattern.k];
     for (uint32_t n = lo; n <= hi; ++n) {
         /* the wedge at the n-th vertex of the walk, between side_he[n-1]
@@ -295,35 +320,53 @@ static int side_dijkstra(steer_ws *w, const sq_cut_graph *G, uint32_t lo, uint32
          * (in the sector next to side s) */
         for (uint32_t c = m->he_next[G->side_he[(n + B - 1) % B]]; !w->cut[c]; c = sq_cut_rot(m, c)) {
             const uint32_t y = sq_cut_dest(m, c);
-            if (!is_free(w, y)) continue;
-            const double l = w->len[c] + (w->near[y] ? w->penalty : 0.0);
-            if (l < dist[y]) {
-                dist[y] = l, par[y] = c, src[y] = n;
-                if (!sq_cut_heap_push(&w->heap, l, y)) return 0;
-            }
+            if (is_free(w, y) && !relax(F, y, w->len[c] + (w->near[y] ? w->penalty : 0.0), c, n)) return 0;
         }
+    }
+    return 1;
+}
+
+/* Grows F over free vertices (Dijkstra) until every vertex the caller
+ * reads is settled:
+ *  - stop a cone: the free vertices of its ring;
+ *  - stop SQ_NONE (F just started): NEAR_CONES cones seen (a free ring
+ *    vertex settled), every cone as near as the last of them, and the
+ *    free rings of the cones seen: what nearest_cones and cone_detours
+ *    read.
+ * Or until every reachable vertex is settled. 0: out of memory. */
+static int forest_grow(steer_ws *w, forest *F, uint32_t stop)
+{
+    const sq_mesh *m = w->m;
+    uint32_t left = 0, nseen = 0; /* ring vertices to settle; cones seen */
+    const uint32_t ring = ++w->stamp, seen = ++w->stamp;
+    double dlim = INFINITY; /* the distance of the NEAR_CONES-th cone seen */
+    if (stop != SQ_NONE) {
+        mark_ring(w, F, stop, ring, &left);
+        if (left == 0) return 1;
     }
     double d;
     uint32_t x;
-    while (sq_cut_heap_pop(&w->heap, &d, &x)) {
-        if (d > dist[x]) continue;
-        if (left && w->mark[x] == ring) {
-            w->mark[x] = 0;
-            if (--left == 0) break;
-        }
+    while (sq_cut_heap_pop(&F->heap, &d, &x)) {
+        if (d > fdist(F, x)) continue;
+        F->done[x] = F->stamp;
+        if (w->mark[x] == ring) w->mark[x] = 0, --left;
         const uint32_t h0 = m->v_he[x];
         uint32_t h = h0;
         do {
             const uint32_t y = sq_cut_dest(m, h);
             if (is_free(w, y)) {
-                const double nd = d + w->len[h] + (w->near[y] ? w->penalty : 0.0);
-                if (nd < dist[y]) {
-                    dist[y] = nd, par[y] = h, src[y] = src[x];
-                    if (!sq_cut_heap_push(&w->heap, nd, y)) return 0;
-                }
+                if (!relax(F, y, d + w->len[h] + (w->near[y] ? w->penalty : 0.0), h, F->src[x])) return 0;
+            } else if (stop == SQ_NONE && d <= dlim && w->cone[y] && w->mark[y] != seen) {
+                w->mark[y] = seen;
+                mark_ring(w, F, y, ring, &left);
+                if (++nseen == NEAR_CONES) dlim = d;
             }
             h = sq_cut_rot(m, h);
         } while (h != h0);
+        if (left > 0) continue;
+        if (stop != SQ_NONE) break;
+        /* near: no cone left as near as the last one seen */
+        if (nseen >= NEAR_CONES && (F->heap.n == 0 || F->heap.key[0] > dlim)) break;
     }
     return 1;
 }
@@ -469,8 +512,6 @@ static sq_status apply_detour(const sq_mesh *m, const uint8_t *cone, const sq_cu
     return SQ_OK;
 }
 
-#define NEAR_CONES 16
-
 typedef struct near_entry {
     uint32_t c;
     double d;
@@ -478,8 +519,9 @@ typedef struct near_entry {
 
 static int near_cmp(const void *a, const void *b)
 {
-    const double x = ((const near_entry *)a)->d, y = ((const near_entry *)b)->d;
-    return x < y ? -1 : x > y;
+    const near_entry *p = a, *q = b;
+    if (p->d != q->d) return p->d < q->d ? -1 : 1;
+    return p->c < q->c ? -1 : p->c > q->c; /* ties by index: the same order on every libc */
 }
 
 typedef struct route_cand {
@@ -504,7 +546,7 @@ static uint32_t nearest_cones(const steer_ws *w, const forest *F, near_entry *ne
         uint32_t h = h0;
         do {
             const uint32_t a = sq_cut_dest(m, h);
-            if (is_free(w, a) && F->dist[a] < d) d = F->dist[a];
+            if (is_free(w, a) && fdist(F, a) < d) d = fdist(F, a);
             h = sq_cut_rot(m, h);
         } while (h != h0);
         if (isfinite(d)) near_cone[nnear].c = c, near_cone[nnear++].d = d;
@@ -527,7 +569,11 @@ static int cone_detours(steer_ws *w, const sq_cut_graph *G, const int32_t *valen
         const forest *A = &F[0], *Bf = &F[0];
         if (pass == 1) {
             if (x0 == SQ_NONE || x0 <= lo || x0 >= hi) break;
-            if (!side_dijkstra(w, G, lo, x0, c, &F[1]) || !side_dijkstra(w, G, x0 + 1, hi, c, &F[2])) return 0;
+            /* the halves, resumed where they are of this x0 on this cut */
+            if (!(F[1].live && F[1].lo == lo && F[1].hi == x0) && !forest_start(w, G, lo, x0, &F[1])) return 0;
+            if (!(F[2].live && F[2].lo == x0 + 1 && F[2].hi == hi) && !forest_start(w, G, x0 + 1, hi, &F[2]))
+                return 0;
+            if (!forest_grow(w, &F[1], c) || !forest_grow(w, &F[2], c)) return 0;
             A = &F[1], Bf = &F[2];
         }
         const uint32_t h0 = m->v_he[c];
@@ -538,8 +584,7 @@ static int cone_detours(steer_ws *w, const sq_cut_graph *G, const int32_t *valen
             for (int dir = 0; dir < 2; ++dir) {
                 const uint32_t ab = dir ? m->he_twin[ring] : ring;
                 const uint32_t a = m->he_vert[ab], b = sq_cut_dest(m, ab);
-                if (!is_free(w, a) || !is_free(w, b) || !isfinite(A->dist[a]) ||
-                    !isfinite(Bf->dist[b]))
+                if (!is_free(w, a) || !is_free(w, b) || !isfinite(fdist(A, a)) || !isfinite(fdist(Bf, b)))
                     continue;
                 if (pass == 0 && x0 == SQ_NONE) x0 = A->src[a];
                 uint32_t na, nb;
@@ -548,7 +593,7 @@ static int cone_detours(steer_ws *w, const sq_cut_graph *G, const int32_t *valen
                 int bad = 0;
                 const long q = region_index(w, G, na, nb, valence, n, &bad);
                 if (bad || q % 4 == 0) continue;
-                const double len = A->dist[a] + Bf->dist[b] + w->len[ab];
+                const double len = fdist(A, a) + fdist(Bf, b) + w->len[ab];
                 uint32_t dup = nc;
                 for (uint32_t x = 0; x < nc; ++x)
                     if (cand[x].q == q) dup = x;
@@ -637,12 +682,16 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     w.near = malloc((size_t)m->nv * sizeof *w.near);
     w.len = malloc((size_t)m->nh * sizeof *w.len);
     forest F[3];
+    memset(F, 0, sizeof F);
     int fok = 1;
     for (int f = 0; f < 3; ++f) {
         F[f].dist = malloc((size_t)m->nv * sizeof *F[f].dist);
         F[f].par = malloc((size_t)m->nv * sizeof *F[f].par);
         F[f].src = malloc((size_t)m->nv * sizeof *F[f].src);
-        fok = fok && F[f].dist && F[f].par && F[f].src;
+        F[f].vis = calloc(m->nv, sizeof *F[f].vis);
+        F[f].done = calloc(m->nv, sizeof *F[f].done);
+        fok = fok && F[f].dist && F[f].par && F[f].src && F[f].vis && F[f].done &&
+              sq_cut_heap_init(&F[f].heap, m->nv + 16);
     }
     near_entry *near_cone = malloc(((size_t)ncones + 1) * sizeof *near_cone);
     w.route = malloc(((size_t)m->nv + 2) * sizeof *w.route);
@@ -657,7 +706,7 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     mismatch M;
     memset(&M, 0, sizeof M);
     if (!cone || !blocked || !he_cut0 || !straight0 || !w.cut || !w.cutdeg || !w.near || !w.len || !fok ||
-        !near_cone || !w.route || !w.mark || !w.fstack || !w.fmark || !sq_cut_heap_init(&w.heap, m->nv + 16)) {
+        !near_cone || !w.route || !w.mark || !w.fstack || !w.fmark) {
         st = sq_error_set(err, SQ_ERR_NOMEM, "cut graph: out of memory (steer)");
         goto done;
     }
@@ -686,13 +735,14 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
          * candidates below leave w.cut as they found it) */
         memcpy(w.cut, G->he_cut, m->nh);
         ws_recount(&w);
+        F[1].live = F[2].live = 0;
         for (uint32_t t = 0; t < M.nfree; ++t) {
             if (!M.y[t]) continue;
             const uint32_t i = M.pair_side[M.free_pair[t]];
             const uint32_t sides[2] = {i, G->pattern.partner[i]};
             for (int si = 0; si < 2; ++si) {
                 const uint32_t s = sides[si], lo = G->side_off[s], hi = G->side_off[s + 1];
-                if (!side_dijkstra(&w, G, lo, hi, SQ_NONE, &F[0])) goto nomem;
+                if (!forest_start(&w, G, lo, hi, &F[0]) || !forest_grow(&w, &F[0], SQ_NONE)) goto nomem;
                 const uint32_t nnear = nearest_cones(&w, &F[0], near_cone);
                 for (uint32_t ci = 0; ci < nnear; ++ci) {
                     const uint32_t c = near_cone[ci].c;
@@ -759,9 +809,11 @@ finish:
 done:
     mismatch_free(&M);
     free(cone), free(blocked), free(he_cut0), free(straight0), free(w.cut), free(w.cutdeg), free(w.near), free(w.len), free(near_cone);
-    for (int f = 0; f < 3; ++f) free(F[f].dist), free(F[f].par), free(F[f].src);
+    for (int f = 0; f < 3; ++f) {
+        free(F[f].dist), free(F[f].par), free(F[f].src), free(F[f].vis), free(F[f].done);
+        sq_cut_heap_free(&F[f].heap);
+    }
     free(w.route), free(w.mark), free(w.fstack), free(w.fmark);
-    sq_cut_heap_free(&w.heap);
     return st;
 }
 
