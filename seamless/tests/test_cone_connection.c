@@ -24,6 +24,7 @@
 
 #include <cmocka.h>
 
+#include "sq_clock.h"
 #include "sq_cone_connection.h"
 #include "sq_cut_graph.h"
 #include "sq_mesh.h"
@@ -205,13 +206,15 @@ static void steer_model(const char *name, uint32_t *before, uint32_t *after)
     if (sq_cut_graph_build(&m, cone, &o, &G0, NULL, &err)) fail_msg("%s: %s", name, err.msg);
     if (sq_cut_graph_build(&m, cone, &o, &G, NULL, &err)) fail_msg("%s: %s", name, err.msg);
     sq_cut_steer_stats ss;
+    const double t0 = sq_now();
     if (sq_cut_graph_steer(&m, val, turn, &G, &ss, &err)) fail_msg("%s: steer: %s", name, err.msg);
+    const double seconds = sq_now() - t0;
     uint32_t norm0 = 0;
     assert_int_equal(sq_cut_graph_rotation_mismatch(&m, &G0, turn, &norm0, NULL, &err), SQ_OK);
     assert_int_equal(norm0, ss.norm_before);
     check_steered(&m, val, turn, &G0, &G, &ss, name);
-    print_message("%-8s mismatch %u -> %u, %u reroutes, cut length %.4g -> %.4g\n", name, ss.norm_before,
-                  ss.norm_after, ss.reroutes, ss.length_before, ss.length_after);
+    print_message("%-8s mismatch %u -> %u, %u reroutes, cut length %.4g -> %.4g, %.2f s\n", name, ss.norm_before,
+                  ss.norm_after, ss.reroutes, ss.length_before, ss.length_after, seconds);
     *before = ss.norm_before, *after = ss.norm_after;
     sq_cut_graph_free(&G0), sq_cut_graph_free(&G);
     free(val), free(cone), free(turn);
