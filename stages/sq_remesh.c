@@ -564,9 +564,6 @@ static sq_status quads_from_map(const sq_mesh *m, const sq_map *M, const sq_reme
                               "where the input does not: quads too skewed for the surface's thin "
                               "parts or near the cones); more optimizer iterations may help",
                               (unsigned long long)stats->self_intersections, stats->repair_rounds);
-            if (getenv("SQ_DUMP")) { char b[256]; static int k; snprintf(b, sizeof b, "%s.%d.obj", getenv("SQ_DUMP"), k++); sq_quad_mesh_write_obj(b, &out->quads, NULL);
-              { uint32_t *L = malloc(2 * 100000 * sizeof *L); uint64_t np = 0; sq_remesh_quad_intersections(&out->quads, &np, L, 100000, NULL);
-                snprintf(b, sizeof b, "%s.%d.pairs", getenv("SQ_DUMP"), k - 1); FILE *fp = fopen(b, "w"); for (uint64_t i = 0; i < np && i < 100000; i++) fprintf(fp, "%u %u\n", L[2*i], L[2*i+1]); fclose(fp); free(L); } }
             goto done;
         }
     }
