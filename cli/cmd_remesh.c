@@ -63,7 +63,10 @@ static void help(FILE *f)
             "            fewest quads the cones allow where the layout had those,\n"
             "            else with the arcs' lengths on the surface instead of in\n"
             "            the map as targets, then both 3%% above the size asked;\n"
-            "            four layouts refused fail the run\n"
+            "            after four, where quads passed through each other, the map\n"
+            "            is optimized again drawn 2, 4, 8 and 16 times larger around\n"
+            "            them (smaller quads there, as many in all) and laid out at\n"
+            "            the size asked; eight layouts refused fail the run\n"
             "  export    with --step, --iges or --limit: the quads' Catmull-Clark\n"
             "            surface (OpenSubdiv) as B-spline patches or a limit mesh, as\n"
             "            `seamquad subdiv` writes them\n"
@@ -234,8 +237,9 @@ static void print_text(const char *mesh_path, const char *out_path, const sq_mes
         printf(" (the fewest this layout allows)");
     printf(", T-mesh of %u rectangles, %.2f s\n", s->quantize.faces, s->t_quantize);
     if (s->layouts > 1)
-        printf("              layout %u of those tried (targets in the %s); the last refused: %s\n", s->layouts,
-               s->layout_targets == SQ_TARGETS_MAP ? "map" : "surface", s->layout_why);
+        printf("              layout %u of those tried (targets in the %s%s); the last refused: %s\n",
+               s->layouts, s->layout_targets == SQ_TARGETS_MAP ? "map" : "surface",
+               s->magnified ? ", the map magnified where quads intersected" : "", s->layout_why);
     printf("extract       %u quads, %u vertices, %u irregular; %u folded quads relaxed; %.2f s\n",
            R->quads.nq, R->quads.nv, s->extract.irregular, s->untangle.folded_before, s->t_extract);
     if (s->smoothed) {
@@ -304,8 +308,8 @@ static void print_json(sq_status st, const char *mesh_path, const char *out_path
     sq_json_string(stdout, s->optimize.why);
     printf("}");
     printf(",\n  \"quantize\": {\"quads\": %.0f, \"min_quads\": %.0f, \"tmesh_faces\": %u, \"layouts\": %u, "
-           "\"targets\": \"%s\", \"layout_refused\": ",
-           s->quantize.quads, s->quantize.min_quads, s->quantize.faces, s->layouts,
+           "\"magnified\": %u, \"targets\": \"%s\", \"layout_refused\": ",
+           s->quantize.quads, s->quantize.min_quads, s->quantize.faces, s->layouts, s->magnified,
            s->layout_targets == SQ_TARGETS_MAP ? "map" : "surface");
     sq_json_string(stdout, s->layout_why);
     printf(", \"seconds\": %.6f}", s->t_quantize);

@@ -392,7 +392,13 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         auv += 0.5 * ((c6[2] - c6[0]) * (c6[5] - c6[1]) - (c6[3] - c6[1]) * (c6[4] - c6[0]));
     }
     double a3 = sq_sd_surface_area(m);
-    sq_sd_surface(m, a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0, X.F);
+    if (opt->face_scale) { /* the surface's area as magnified */
+        sq_sd_surface_scaled(m, 1.0, opt->face_scale, X.F);
+        a3 = 0;
+        for (uint32_t f = 0; f < m->nf; f++) a3 += X.F[f].area;
+        sq_sd_surface_scaled(m, a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0, opt->face_scale, X.F);
+    } else
+        sq_sd_surface(m, a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0, X.F);
     for (uint32_t f = 0; f < m->nf; f++) total += X.F[f].area;
     /* step 0: the extreme triangles relaxed by local moves that Newton's
      * rounded steps cannot make (sq_optimize_relax.c; RELAX_BOUND). The

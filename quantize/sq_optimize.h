@@ -65,6 +65,11 @@ typedef struct sq_optimize_options {
      * that run the optimizer in rounds (sq_remesh_optimize). Default 0:
      * never worse. */
     int keep_last;
+    /* NULL, or per face of the map a factor on its reference triangle:
+     * the map is drawn toward that many times the surface's size there,
+     * so that a layout at a given quad count puts its square as many
+     * quads on the face (sq_remesh's magnified layouts) */
+    const double *face_scale;
     /* called after every iteration (may be NULL): a progress hook; the
      * iteration it gets is counted from progress_base + 1 (callers that
      * run the optimizer in rounds count across them) */

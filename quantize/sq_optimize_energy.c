@@ -74,6 +74,11 @@ void sq_sd_surface(const sq_mesh *m, double scale, sq_sd_face *F)
     for (uint32_t f = 0; f < m->nf; f++) face_frame(m, f, scale, &F[f]);
 }
 
+void sq_sd_surface_scaled(const sq_mesh *m, double scale, const double *face_scale, sq_sd_face *F)
+{
+    for (uint32_t f = 0; f < m->nf; f++) face_frame(m, f, scale * face_scale[f], &F[f]);
+}
+
 static void jacobian(const sq_sd_face *F, const double uv[6], double J[4])
 {
     /* J[a][b] = sum_c uv[c][a] G[c][b]; vec order (00, 01, 10, 11) */

@@ -636,6 +636,84 @@ static void refused_layout(sq_remesh_stats *stats, double t[4])
     stats->t_quantize = stats->t_extract = stats->t_smooth = stats->t_verify = 0;
 }
 
+/* Where the quads of a layout pass through each other beyond repair, they
+ * are too large for the surface there (a thin part, a valence-22 cone's
+ * wedges on a rim, a rough patch between close cones): the quads of each
+ * intersecting pair are kept as points (pts, *npts of at most cap). */
+#define MAGNIFY_POINTS 4096u
+/* magnified layouts only after a layout with at most this many pairs per
+ * quad (femur's cones at 1K: 0.084; helmet's from param's map: 2.8) */
+#define MAGNIFY_MAX_PAIRS 0.1
+static sq_status intersecting_points(const sq_quad_mesh *Q, double *pts, uint32_t *npts, uint32_t cap,
+                                     sq_error *err)
+{
+    uint32_t room = cap - *npts, want = room / 2 + 1;
+    uint32_t *list = malloc(2 * (size_t)want * sizeof *list);
+    if (!list) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (intersecting quads)");
+    uint64_t pairs = 0;
+    sq_status st = sq_remesh_quad_intersections(Q, &pairs, list, want, err);
+    for (uint64_t i = 0; !st && i < 2 * (pairs < want ? pairs : want) && *npts < cap; i++) {
+        const uint32_t *q = Q->quad + 4 * (size_t)list[i];
+        double *p = pts + 3 * (size_t)*npts;
+        p[0] = p[1] = p[2] = 0;
+        for (int k = 0; k < 4; k++)
+            for (int d = 0; d < 3; d++) p[d] += 0.25 * Q->pos[3 * (size_t)q[k] + d];
+        ++*npts;
+    }
+    free(list);
+    return st;
+}
+
+static double surface_area(const sq_mesh *m)
+{
+    double area = 0;
+    for (uint32_t f = 0; f < m->nf; f++) {
+        const uint32_t h = m->f_he[f];
+        const double *a = m->pos + 3 * (size_t)m->he_vert[h];
+        const double *b = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]];
+        const double *c = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+        area += 0.5 * sqrt(x * x + y * y + z * z);
+    }
+    return area;
+}
+
+/* The map drawn toward `factor` times the surface's size around the points
+ * (within about `radius`: a Gaussian falloff by distance from each face's
+ * centroid to the nearest point), from the map as it is: the optimizer
+ * with per-face reference scales (sq_optimize_options.face_scale), its
+ * last iterate kept (its energy is against the magnified surface). A
+ * layout at the same quad count then puts about factor^2 times more quads
+ * there, fewer elsewhere. Cost: faces times points, and the optimizer. */
+static sq_status magnify_map(sq_map *M, const double *pts, uint32_t npts, double radius, double factor,
+                             const sq_optimize_options *base, sq_error *err)
+{
+    const sq_mesh *mm = &M->mesh;
+    double *scale = malloc(((size_t)mm->nf + 1) * sizeof *scale);
+    if (!scale) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (magnified map)");
+    for (uint32_t f = 0; f < mm->nf; f++) {
+        double c[3] = {0, 0, 0}, best = INFINITY;
+        uint32_t h = mm->f_he[f];
+        for (int k = 0; k < 3; k++, h = mm->he_next[h])
+            for (int d = 0; d < 3; d++) c[d] += mm->pos[3 * (size_t)mm->he_vert[h] + d] / 3;
+        for (uint32_t i = 0; i < npts; i++) {
+            const double *p = pts + 3 * (size_t)i;
+            double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2], d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 < best) best = d2;
+        }
+        scale[f] = 1 + (factor - 1) * exp(-best / (radius * radius));
+    }
+    sq_optimize_options oo = *base;
+    oo.face_scale = scale;
+    oo.keep_last = 1;
+    oo.progress = NULL;
+    sq_optimize_report r;
+    sq_status st = sq_optimize_map_free_or_fixed(M, &oo, &r, err);
+    free(scale);
+    return st;
+}
+
 /* One run of the pipeline; *cones (if not NULL) gets a copy of the cones
  * once stage 1 has them, whatever happens after. */
 static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_remesh_options *opt,
@@ -795,16 +873,46 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
     L.base_quads = L.quads = opt->edge_length > 0 ? 0 : opt->quads > 0 ? opt->quads : SQ_REMESH_QUADS;
     L.base_edge = L.edge_length = opt->edge_length;
     L.targets = SQ_TARGETS_MAP;
+    double *pts = NULL; /* the intersecting quads of the refused layouts */
+    uint32_t npts = 0;
     for (stats->layouts = 1;; stats->layouts++) {
         st = quads_from_map(m, &M, opt, L.quads, L.edge_length, L.targets, &pc, out, &igm, stats, err);
         stats->layout_targets = L.targets;
-        if (st != SQ_ERR_SOLVER || stats->layouts == SQ_REMESH_LAYOUTS ||
+        if (st != SQ_ERR_SOLVER || stats->layouts == SQ_REMESH_LAYOUTS + SQ_REMESH_MAGNIFIED ||
             !(strcmp(stats->stage, "extract") == 0 || strcmp(stats->stage, "verify") == 0))
             break;
-        snprintf(stats->layout_why, sizeof stats->layout_why, "%.0f quads (targets in the %s): %s: %.100s",
-                 stats->quantize.quads, L.targets == SQ_TARGETS_MAP ? "map" : "surface", stats->stage,
-                 err ? err->msg : "");
-        next_layout(stats, &L);
+        if (strcmp(stats->stage, "verify") == 0 && stats->self_intersections > 0) {
+            sq_error e2;
+            if (!pts && !(pts = malloc(3 * (size_t)MAGNIFY_POINTS * sizeof *pts))) {
+                st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (intersecting quads)");
+                break;
+            }
+            sq_status s2 = intersecting_points(&out->quads, pts, &npts, MAGNIFY_POINTS, &e2);
+            if (s2) {
+                st = s2, *err = e2;
+                break;
+            }
+        }
+        /* nothing to magnify, or intersections everywhere (a map too
+         * distorted as a whole: helmet's from param, thousands of pairs) */
+        if (stats->layouts >= SQ_REMESH_LAYOUTS &&
+            (npts == 0 || (double)stats->self_intersections > MAGNIFY_MAX_PAIRS * stats->quantize.quads))
+            break;
+        snprintf(stats->layout_why, sizeof stats->layout_why, "%.0f quads (targets in the %s%s): %s: %.100s",
+                 stats->quantize.quads, L.targets == SQ_TARGETS_MAP ? "map" : "surface",
+                 stats->magnified ? ", magnified" : "", stats->stage, err ? err->msg : "");
+        if (stats->layouts >= SQ_REMESH_LAYOUTS) {
+            /* the map magnified around every intersection so far, twice
+             * as much each time; the layout at the size asked */
+            const double edge = L.base_edge > 0 ? L.base_edge : sqrt(surface_area(m) / L.base_quads);
+            stats->magnified++;
+            const double t2 = sq_now();
+            st = magnify_map(&M, pts, npts, 2 * edge, (double)(1u << stats->magnified), &oo, err);
+            stats->t_optimize += sq_now() - t2;
+            if (st) break;
+            L.quads = L.base_quads, L.edge_length = L.base_edge, L.targets = SQ_TARGETS_MAP;
+        } else
+            next_layout(stats, &L);
         refused_layout(stats, refused_t);
         sq_quad_mesh_free(&out->quads);
         sq_map_free(&igm);
@@ -812,6 +920,7 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
         pc = pc_layout;
         pc.done = done;
     }
+    free(pts);
     stats->t_quantize += refused_t[0], stats->t_extract += refused_t[1];
     stats->t_smooth += refused_t[2], stats->t_verify += refused_t[3];
     if (st) goto fail;

@@ -84,9 +84,13 @@ extern "C" {
  * steps are kept whole. */
 #define SQ_REMESH_STEP5_CAP_FACES 40000u
 #define SQ_REMESH_STEP5_ITERATIONS 6u
-/* Layouts tried from one map (stages 5 to 8) before the run fails: the
- * size asked, then three others (sq_remesh.c, next_layout). */
+/* Layouts tried from one map (stages 5 to 8) before the magnified ones:
+ * the size asked, then three others (sq_remesh.c, next_layout). */
 #define SQ_REMESH_LAYOUTS 4u
+/* Then up to this many layouts from the map magnified around the quads
+ * that passed through each other (sq_remesh.c, magnify_map), each at the
+ * size asked, the magnification doubled each time. */
+#define SQ_REMESH_MAGNIFIED 4u
 
 enum { SQ_REMESH_PARAM_AUTO = 0, SQ_REMESH_PARAM_ALWAYS = 1, SQ_REMESH_PARAM_NEVER = 2 };
 
@@ -167,6 +171,8 @@ typedef struct sq_remesh_stats {
     char layout_why[200];          /* why the last refused one was refused   */
     int layout_targets;            /* the arcs' targets of the one returned  */
                                    /* (SQ_TARGETS_MAP or _SURFACE)           */
+    uint32_t magnified;            /* of the layouts, those from the map     */
+                                   /* magnified where quads intersected      */
     double t_rotations;            /* stage 2's map on the mesh (tried)      */
     double t_cones, t_param, t_optimize, t_quantize, t_extract, t_smooth, t_total; /* stage 3 in t_optimize */
 } sq_remesh_stats;
