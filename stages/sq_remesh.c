@@ -889,7 +889,8 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
             }
             sq_status s2 = intersecting_points(&out->quads, pts, &npts, MAGNIFY_POINTS, &e2);
             if (s2) {
-                st = s2, *err = e2;
+                st = s2;
+                if (err) *err = e2;
                 break;
             }
         }
@@ -907,9 +908,18 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
             const double edge = L.base_edge > 0 ? L.base_edge : sqrt(surface_area(m) / L.base_quads);
             stats->magnified++;
             const double t2 = sq_now();
-            st = magnify_map(&M, pts, npts, 2 * edge, (double)(1u << stats->magnified), &oo, err);
+            sq_error e2;
+            sq_optimize_options mo = oo; /* the optimizer's budget, as the first time */
+            mo.max_iterations = opt->optimize_iterations ? opt->optimize_iterations : SQ_REMESH_ITERATIONS;
+            sq_status s2 = magnify_map(&M, pts, npts, 2 * edge, (double)(1u << stats->magnified), &mo, &e2);
             stats->t_optimize += sq_now() - t2;
-            if (st) break;
+            if (s2) { /* out of memory fails the run; otherwise the layout's refusal stands */
+                if (s2 == SQ_ERR_NOMEM) {
+                    st = s2;
+                    if (err) *err = e2;
+                }
+                break;
+            }
             L.quads = L.base_quads, L.edge_length = L.base_edge, L.targets = SQ_TARGETS_MAP;
         } else
             next_layout(stats, &L);
