@@ -467,12 +467,12 @@ static void ws_recount(steer_ws *w)
 }
 
 /* G with the segment side_he[na .. nb-1] of side s replaced by the detour
- * (n halfedges); the boundary word and the check redone. The new word may
+ * (n halfedges); the boundary word redone (not the check: the caller
+ * checks the detour it keeps). The new word may
  * start elsewhere: its corner (i + *shift) mod k is G's corner i, whose
  * straight flag it gets. */
-static sq_status apply_detour(const sq_mesh *m, const uint8_t *cone, const sq_cut_graph *G,
-                              uint32_t s, uint32_t na, uint32_t nb, const uint32_t *route, uint32_t n,
-                              sq_cut_graph *out, uint32_t *shift, sq_error *err)
+static sq_status apply_detour(const sq_mesh *m, const sq_cut_graph *G, uint32_t s, uint32_t na, uint32_t nb,
+                              const uint32_t *route, uint32_t n, sq_cut_graph *out, uint32_t *shift, sq_error *err)
 {
     sq_cut_graph_init(out);
     out->he_cut = malloc(m->nh);
@@ -492,10 +492,7 @@ static sq_status apply_detour(const sq_mesh *m, const uint8_t *cone, const sq_cu
     out->length = len;
     out->rotation = G->rotation, out->flip = G->flip, out->tries = G->tries;
     sq_status st = sq_cut_boundary_word(m, out, err);
-    if (st == SQ_OK) {
-        out->rank = sq_pattern_rank(&out->pattern);
-        st = sq_cut_graph_check(m, cone, out, err);
-    }
+    if (st == SQ_OK) out->rank = sq_pattern_rank(&out->pattern);
     const uint32_t k = G->pattern.k;
     if (st == SQ_OK && out->pattern.k != k)
         st = sq_error_set(err, SQ_ERR_INTERNAL, "cut graph: a detour changed the number of sides");
@@ -628,7 +625,7 @@ static void pick_detour(steer_ws *w, const sq_cut_graph *G, const double *turn, 
         sq_cut_graph cg;
         sq_error e2;
         uint32_t d = 0;
-        if (!n || apply_detour(m, cone, G, s, na, nb, w->route, n, &cg, &d, &e2) != SQ_OK) {
+        if (!n || apply_detour(m, G, s, na, nb, w->route, n, &cg, &d, &e2) != SQ_OK) {
             if (n) sq_cut_graph_free(&cg);
             continue;
         }
@@ -639,7 +636,10 @@ static void pick_detour(steer_ws *w, const sq_cut_graph *G, const double *turn, 
         }
         const uint32_t nn = M2.norm;
         mismatch_free(&M2);
-        if (nn < norm && (nn < *best_norm || (nn == *best_norm && cand[x].len < *best_len))) {
+        /* the graph's check (linear in the mesh) only for a detour that
+         * would win: the same choice as checking every one first */
+        if (nn < norm && (nn < *best_norm || (nn == *best_norm && cand[x].len < *best_len)) &&
+            sq_cut_graph_check(m, cone, &cg, &e2) == SQ_OK) {
             *best_norm = nn, *best_len = cand[x].len, *best_shift = d;
             sq_cut_graph_free(best);
             *best = cg;
