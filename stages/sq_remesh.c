@@ -636,83 +636,12 @@ static void refused_layout(sq_remesh_stats *stats, double t[4])
     stats->t_quantize = stats->t_extract = stats->t_smooth = stats->t_verify = 0;
 }
 
-/* Where the quads of a layout pass through each other beyond repair, they
- * are too large for the surface there (a thin part, a valence-22 cone's
- * wedges on a rim, a rough patch between close cones): the quads of each
- * intersecting pair are kept as points (pts, *npts of at most cap). */
+/* The magnified layouts (sq_remesh_magnify.c): at most this many points
+ * kept from the intersecting quads of the refused layouts, and only after
+ * a layout with at most MAGNIFY_MAX_PAIRS pairs per quad (femur's cones at
+ * 1K: 0.084; helmet's from param's map: 2.8) */
 #define MAGNIFY_POINTS 4096u
-/* magnified layouts only after a layout with at most this many pairs per
- * quad (femur's cones at 1K: 0.084; helmet's from param's map: 2.8) */
 #define MAGNIFY_MAX_PAIRS 0.1
-static sq_status intersecting_points(const sq_quad_mesh *Q, double *pts, uint32_t *npts, uint32_t cap,
-                                     sq_error *err)
-{
-    uint32_t room = cap - *npts, want = room / 2 + 1;
-    uint32_t *list = malloc(2 * (size_t)want * sizeof *list);
-    if (!list) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (intersecting quads)");
-    uint64_t pairs = 0;
-    sq_status st = sq_remesh_quad_intersections(Q, &pairs, list, want, err);
-    for (uint64_t i = 0; !st && i < 2 * (pairs < want ? pairs : want) && *npts < cap; i++) {
-        const uint32_t *q = Q->quad + 4 * (size_t)list[i];
-        double *p = pts + 3 * (size_t)*npts;
-        p[0] = p[1] = p[2] = 0;
-        for (int k = 0; k < 4; k++)
-            for (int d = 0; d < 3; d++) p[d] += 0.25 * Q->pos[3 * (size_t)q[k] + d];
-        ++*npts;
-    }
-    free(list);
-    return st;
-}
-
-static double surface_area(const sq_mesh *m)
-{
-    double area = 0;
-    for (uint32_t f = 0; f < m->nf; f++) {
-        const uint32_t h = m->f_he[f];
-        const double *a = m->pos + 3 * (size_t)m->he_vert[h];
-        const double *b = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]];
-        const double *c = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-        area += 0.5 * sqrt(x * x + y * y + z * z);
-    }
-    return area;
-}
-
-/* The map drawn toward `factor` times the surface's size around the points
- * (within about `radius`: a Gaussian falloff by distance from each face's
- * centroid to the nearest point), from the map as it is: the optimizer
- * with per-face reference scales (sq_optimize_options.face_scale), its
- * last iterate kept (its energy is against the magnified surface). A
- * layout at the same quad count then puts about factor^2 times more quads
- * there, fewer elsewhere. Cost: faces times points, and the optimizer. */
-static sq_status magnify_map(sq_map *M, const double *pts, uint32_t npts, double radius, double factor,
-                             const sq_optimize_options *base, sq_error *err)
-{
-    const sq_mesh *mm = &M->mesh;
-    double *scale = malloc(((size_t)mm->nf + 1) * sizeof *scale);
-    if (!scale) return sq_error_set(err, SQ_ERR_NOMEM, "out of memory (magnified map)");
-    for (uint32_t f = 0; f < mm->nf; f++) {
-        double c[3] = {0, 0, 0}, best = INFINITY;
-        uint32_t h = mm->f_he[f];
-        for (int k = 0; k < 3; k++, h = mm->he_next[h])
-            for (int d = 0; d < 3; d++) c[d] += mm->pos[3 * (size_t)mm->he_vert[h] + d] / 3;
-        for (uint32_t i = 0; i < npts; i++) {
-            const double *p = pts + 3 * (size_t)i;
-            double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2], d2 = dx * dx + dy * dy + dz * dz;
-            if (d2 < best) best = d2;
-        }
-        scale[f] = 1 + (factor - 1) * exp(-best / (radius * radius));
-    }
-    sq_optimize_options oo = *base;
-    oo.face_scale = scale;
-    oo.keep_last = 1;
-    oo.progress = NULL;
-    sq_optimize_report r;
-    sq_status st = sq_optimize_map_free_or_fixed(M, &oo, &r, err);
-    free(scale);
-    return st;
-}
 
 /* One run of the pipeline; *cones (if not NULL) gets a copy of the cones
  * once stage 1 has them, whatever happens after. */
@@ -887,7 +816,7 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
                 st = sq_error_set(err, SQ_ERR_NOMEM, "out of memory (intersecting quads)");
                 break;
             }
-            sq_status s2 = intersecting_points(&out->quads, pts, &npts, MAGNIFY_POINTS, &e2);
+            sq_status s2 = sq_remesh_intersecting_points(&out->quads, pts, &npts, MAGNIFY_POINTS, &e2);
             if (s2) {
                 st = s2;
                 if (err) *err = e2;
@@ -905,13 +834,13 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
         if (stats->layouts >= SQ_REMESH_LAYOUTS) {
             /* the map magnified around every intersection so far, twice
              * as much each time; the layout at the size asked */
-            const double edge = L.base_edge > 0 ? L.base_edge : sqrt(surface_area(m) / L.base_quads);
+            const double edge = L.base_edge > 0 ? L.base_edge : sqrt(sq_remesh_surface_area(m) / L.base_quads);
             stats->magnified++;
             const double t2 = sq_now();
             sq_error e2;
             sq_optimize_options mo = oo; /* the optimizer's budget, as the first time */
             mo.max_iterations = opt->optimize_iterations ? opt->optimize_iterations : SQ_REMESH_ITERATIONS;
-            sq_status s2 = magnify_map(&M, pts, npts, 2 * edge, (double)(1u << stats->magnified), &mo, &e2);
+            sq_status s2 = sq_remesh_magnify_map(&M, pts, npts, 2 * edge, (double)(1u << stats->magnified), &mo, &e2);
             stats->t_optimize += sq_now() - t2;
             if (s2) { /* out of memory fails the run; otherwise the layout's refusal stands */
                 if (s2 == SQ_ERR_NOMEM) {
