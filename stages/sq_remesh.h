@@ -88,9 +88,9 @@ extern "C" {
  * the size asked, then three others (sq_remesh.c, next_layout). */
 #define SQ_REMESH_LAYOUTS 4u
 /* Then up to this many layouts from the map magnified around the quads
- * that passed through each other (sq_remesh.c, magnify_map), each at the
- * size asked, the magnification doubled each time. */
-#define SQ_REMESH_MAGNIFIED 4u
+ * that passed through each other (sq_remesh_magnify.c), each at the size
+ * asked, the magnification doubled each time (2 to 64). */
+#define SQ_REMESH_MAGNIFIED 6u
 
 enum { SQ_REMESH_PARAM_AUTO = 0, SQ_REMESH_PARAM_ALWAYS = 1, SQ_REMESH_PARAM_NEVER = 2 };
 

@@ -103,7 +103,7 @@ assert j["ok"] and j["extract"]["quads"] == nq and j["extract"]["folded_after"] 
 q = j["quantize"]
 # (a layout refused at the fewest quads is followed by one a quarter larger)
 assert abs(nq - target) <= 0.05 * target or nq <= (1.35 if q["layouts"] > 1 else 1.05) * q["min_quads"], (nq, q)
-assert 1 <= q["layouts"] <= 8 and (q["layouts"] == 1) == (q["layout_refused"] == ""), q
+assert 1 <= q["layouts"] <= 10 and (q["layouts"] == 1) == (q["layout_refused"] == ""), q
 assert q["magnified"] == max(0, q["layouts"] - 4), q
 assert q["targets"] in ("map", "surface") and (q["layouts"] > 1 or q["targets"] == "map"), q
 assert j["extract"]["irregular"] == j["cones"], j
