@@ -18,7 +18,7 @@
  * refinement (one sparse Cholesky per iteration on about twice its
  * vertices) and by param on large cone sets; memory by the refinement. */
 #include "sq_remesh.h"
-#include "sq_remesh_magnify.h"
+#include "sq_remesh_internal.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 
 #include "sq_remesh.h"
-#include "sq_remesh_magnify.h"
+#include "sq_remesh_internal.h"
 
 sq_status sq_remesh_intersecting_points(const sq_quad_mesh *Q, double *pts, uint32_t *npts, uint32_t cap,
                                         sq_error *err)

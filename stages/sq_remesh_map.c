@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "sq_remesh.h"
+#include "sq_remesh_internal.h"
 
 sq_status sq_remesh_param_map(const sq_param *P, const sq_mesh *m, const int32_t *valence,
                               sq_map *out, sq_error *err)

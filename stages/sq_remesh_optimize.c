@@ -28,6 +28,7 @@
 #include <string.h>
 
 #include "sq_remesh.h"
+#include "sq_remesh_internal.h"
 
 #define ROUND_ITERATIONS 5u
 

@@ -27,6 +27,7 @@
 #include "sq_closest_point.h"
 #include "sq_edge_hash.h"
 #include "sq_remesh.h"
+#include "sq_remesh_internal.h"
 
 #define REPAIR_ROUNDS 20u
 #define REPAIR_LIST 65536u

@@ -29,6 +29,7 @@
 #include "sq_mesh.h"
 #include "sq_param.h"
 #include "sq_remesh.h"
+#include "sq_remesh_internal.h"
 #include "sq_test_potentials.h"
 
 static const char *shared_dir(void)
