@@ -766,6 +766,15 @@ static double prepared(const char *what, sq_map *M)
     return pr.conformal_after;
 }
 
+/* The model and its published map (the vt of its OBJ), exact. */
+static void load_published(const char *name, model *md, sq_map *M)
+{
+    sq_error err;
+    load(name, md);
+    if (sq_map_from_soup(&md->soup, &md->mesh, md->valence, 1e-9, 0, M, NULL, &err))
+        fail_msg("%s: published map: %s", name, err.msg);
+}
+
 /* UV area over 3D area, summed over the faces with (or without) mark */
 static double uv_per_area(const sq_map *M, const uint8_t *mark, int want)
 {
@@ -795,9 +804,8 @@ static void test_face_scale(void **state)
     (void)state;
     model md;
     sq_error err;
-    load("knot1", &md);
     sq_map M;
-    if (sq_map_from_soup(&md.soup, &md.mesh, md.valence, 1e-9, 0, &M, NULL, &err)) fail_msg("%s", err.msg);
+    load_published("knot1", &md, &M);
     const sq_mesh *m = &M.mesh;
     double *scale = malloc((size_t)m->nf * sizeof *scale);
     uint8_t *mark = malloc(m->nf);
@@ -836,10 +844,8 @@ static void test_quantize_prepare(void **state)
 {
     (void)state;
     model md;
-    sq_error err;
-    load("knot1", &md);
     sq_map pub;
-    if (sq_map_from_soup(&md.soup, &md.mesh, md.valence, 1e-9, 0, &pub, NULL, &err)) fail_msg("%s", err.msg);
+    load_published("knot1", &md, &pub);
     double published = sq_map_conformal_mean(&pub);
     assert_true(published > 1.3 && published < 1.35);
     prepared("knot1 published", &pub);
