@@ -55,6 +55,10 @@ int64_t sq_mesh_genus(const sq_mesh *m);
 /* Number of faces around vertex v (its valence). */
 uint32_t sq_mesh_vertex_valence(const sq_mesh *m, uint32_t v);
 
+/* The total area of m's faces (each a triangle: the first three corners
+ * from f_he[f]). */
+double sq_mesh_area(const sq_mesh *m);
+
 /* The length of the diagonal of the bounding box of nv points (3 nv
  * coordinates): the scale the referees' tolerances are relative to. */
 double sq_bbox_diagonal(uint32_t nv, const double *pos);

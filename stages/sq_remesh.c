@@ -835,7 +835,7 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
         if (stats->layouts >= SQ_REMESH_LAYOUTS) {
             /* the map magnified around every intersection so far, twice
              * as much each time; the layout at the size asked */
-            const double edge = L.base_edge > 0 ? L.base_edge : sqrt(sq_remesh_surface_area(m) / L.base_quads);
+            const double edge = L.base_edge > 0 ? L.base_edge : sqrt(sq_mesh_area(m) / L.base_quads);
             stats->magnified++;
             const double t2 = sq_now();
             sq_error e2;

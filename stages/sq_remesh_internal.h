@@ -42,12 +42,10 @@ sq_status sq_remesh_repair_intersections(const sq_mesh *m, sq_quad_mesh *Q, uint
  * scaled by 1 + (factor - 1) exp(-(d / radius)^2), d the distance from its
  * centroid to the nearest point; sq_optimize_options.face_scale), its last
  * iterate kept (its energy is against the magnified surface); base gives
- * the basis and the budget. Cost: faces times points, and the optimizer.
- * sq_remesh_surface_area: the area of m's triangles. */
+ * the basis and the budget. Cost: faces times points, and the optimizer. */
 sq_status sq_remesh_intersecting_points(const sq_quad_mesh *Q, double *pts, uint32_t *npts, uint32_t cap,
                                         sq_error *err);
 sq_status sq_remesh_magnify_map(sq_map *M, const double *pts, uint32_t npts, double radius, double factor,
                                 const sq_optimize_options *base, sq_error *err);
-double sq_remesh_surface_area(const sq_mesh *m);
 
 #endif

@@ -60,6 +60,8 @@ static void test_tetrahedron(void **state)
     assert_int_equal(sq_mesh_euler(&m), 2);
     assert_int_equal(sq_mesh_genus(&m), 0);
     for (uint32_t v = 0; v < 4; v++) assert_int_equal(sq_mesh_vertex_valence(&m, v), 3);
+    /* three right triangles of area 1/2 and one equilateral of side sqrt 2 */
+    assert_true(fabs(sq_mesh_area(&m) - (1.5 + sqrt(3.0) / 2)) < 1e-15);
     sq_mesh_free(&m);
 }
 
