@@ -508,18 +508,21 @@ sq_status sq_mesh_from_soup(const sq_soup *s, unsigned flags, sq_mesh *out, sq_e
     return SQ_OK;
 }
 
+double sq_mesh_face_area(const sq_mesh *m, uint32_t f)
+{
+    const uint32_t h = m->f_he[f];
+    const double *a = m->pos + 3 * (size_t)m->he_vert[h];
+    const double *b = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]];
+    const double *c = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+    return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
 double sq_mesh_area(const sq_mesh *m)
 {
     double area = 0;
-    for (uint32_t f = 0; f < m->nf; f++) {
-        const uint32_t h = m->f_he[f];
-        const double *a = m->pos + 3 * (size_t)m->he_vert[h];
-        const double *b = m->pos + 3 * (size_t)m->he_vert[m->he_next[h]];
-        const double *c = m->pos + 3 * (size_t)m->he_vert[m->he_next[m->he_next[h]]];
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-        area += 0.5 * sqrt(x * x + y * y + z * z);
-    }
+    for (uint32_t f = 0; f < m->nf; f++) area += sq_mesh_face_area(m, f);
     return area;
 }
 

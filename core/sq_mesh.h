@@ -55,8 +55,9 @@ int64_t sq_mesh_genus(const sq_mesh *m);
 /* Number of faces around vertex v (its valence). */
 uint32_t sq_mesh_vertex_valence(const sq_mesh *m, uint32_t v);
 
-/* The total area of m's faces (each a triangle: the first three corners
- * from f_he[f]). */
+/* The area of face f of a triangle mesh (its first three corners from
+ * f_he[f]); sq_mesh_area: the sum over m's faces. */
+double sq_mesh_face_area(const sq_mesh *m, uint32_t f);
 double sq_mesh_area(const sq_mesh *m);
 
 /* The length of the diagonal of the bounding box of nv points (3 nv

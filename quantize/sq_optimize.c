@@ -391,14 +391,11 @@ sq_status sq_optimize_map(sq_map *M, const sq_optimize_options *opt, sq_optimize
         sq_face_uv(m, M->he_uv, f, c6);
         auv += 0.5 * ((c6[2] - c6[0]) * (c6[5] - c6[1]) - (c6[3] - c6[1]) * (c6[4] - c6[0]));
     }
-    double a3 = sq_sd_surface_area(m);
-    if (opt->face_scale) { /* the surface's area as magnified */
-        sq_sd_surface_scaled(m, 1.0, opt->face_scale, X.F);
-        a3 = 0;
-        for (uint32_t f = 0; f < m->nf; f++) a3 += X.F[f].area;
-        sq_sd_surface_scaled(m, a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0, opt->face_scale, X.F);
-    } else
-        sq_sd_surface(m, a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0, X.F);
+    /* the surface's area as magnified by face_scale (if given) */
+    sq_sd_surface_scaled(m, 1.0, opt->face_scale, X.F);
+    double a3 = 0;
+    for (uint32_t f = 0; f < m->nf; f++) a3 += X.F[f].area;
+    sq_sd_surface_scaled(m, a3 > 0 && auv > 0 ? sqrt(auv / a3) : 1.0, opt->face_scale, X.F);
     for (uint32_t f = 0; f < m->nf; f++) total += X.F[f].area;
     /* step 0: the extreme triangles relaxed by local moves that Newton's
      * rounded steps cannot make (sq_optimize_relax.c; RELAX_BOUND). The

@@ -69,14 +69,11 @@ double sq_sd_surface_area(const sq_mesh *m)
     return a;
 }
 
-void sq_sd_surface(const sq_mesh *m, double scale, sq_sd_face *F)
-{
-    for (uint32_t f = 0; f < m->nf; f++) face_frame(m, f, scale, &F[f]);
-}
+void sq_sd_surface(const sq_mesh *m, double scale, sq_sd_face *F) { sq_sd_surface_scaled(m, scale, NULL, F); }
 
 void sq_sd_surface_scaled(const sq_mesh *m, double scale, const double *face_scale, sq_sd_face *F)
 {
-    for (uint32_t f = 0; f < m->nf; f++) face_frame(m, f, scale * face_scale[f], &F[f]);
+    for (uint32_t f = 0; f < m->nf; f++) face_frame(m, f, face_scale ? scale * face_scale[f] : scale, &F[f]);
 }
 
 static void jacobian(const sq_sd_face *F, const double uv[6], double J[4])

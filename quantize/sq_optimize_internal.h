@@ -42,7 +42,8 @@ static inline void sq_face_uv(const sq_mesh *m, const double *he_uv, uint32_t f,
  * f_he[f] on) with the surface scaled by `scale`. */
 double sq_sd_surface_area(const sq_mesh *m);
 void sq_sd_surface(const sq_mesh *m, double scale, sq_sd_face *F);
-/* sq_sd_surface with face f's triangle scaled by scale * face_scale[f]. */
+/* sq_sd_surface with face f's triangle scaled by scale * face_scale[f]
+ * (face_scale NULL: by scale alone). */
 void sq_sd_surface_scaled(const sq_mesh *m, double scale, const double *face_scale, sq_sd_face *F);
 
 /* psi = |J|^2 + |J^-1|^2 of the corners uv (u0 v0 u1 v1 u2 v2); INFINITY

@@ -786,11 +786,7 @@ static double uv_per_area(const sq_map *M, const uint8_t *mark, int want)
         const uint32_t h1 = m->he_next[h], h2 = m->he_next[h1];
         const double *a = M->he_uv + 2 * (size_t)h, *b = M->he_uv + 2 * (size_t)h1, *c = M->he_uv + 2 * (size_t)h2;
         uv += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
-        const double *p = m->pos + 3 * (size_t)m->he_vert[h], *q = m->pos + 3 * (size_t)m->he_vert[h1];
-        const double *r = m->pos + 3 * (size_t)m->he_vert[h2];
-        const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-        const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-        a3 += 0.5 * sqrt(x * x + y * y + z * z);
+        a3 += sq_mesh_face_area(m, f);
     }
     return uv / a3;
 }
