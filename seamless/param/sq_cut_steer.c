@@ -661,6 +661,35 @@ static sq_status restore_cut(const sq_mesh *m, sq_cut_graph *G, const uint8_t *h
     return SQ_OK;
 }
 
+/* One round's search: every non-tree branch that must change, on both of
+ * its sides; per side the detours around the nearest cones; the lowest
+ * mismatch, then the shortest detour, into *best (pick_detour). 0 when out
+ * of memory. */
+static int best_detour(steer_ws *w, const sq_cut_graph *G, const int32_t *valence, const double *turn,
+                       const uint8_t *blocked, const mismatch *M, forest F[3], near_entry *near_cone,
+                       sq_cut_graph *best, uint32_t *best_norm, double *best_len, uint32_t *best_shift)
+{
+    route_cand cand[4];
+    for (uint32_t t = 0; t < M->nfree; ++t) {
+        if (!M->y[t]) continue;
+        const uint32_t i = M->pair_side[M->free_pair[t]];
+        const uint32_t sides[2] = {i, G->pattern.partner[i]};
+        for (int si = 0; si < 2; ++si) {
+            const uint32_t s = sides[si], lo = G->side_off[s], hi = G->side_off[s + 1];
+            if (!forest_start(w, G, lo, hi, &F[0]) || !forest_grow(w, &F[0], SQ_NONE)) return 0;
+            const uint32_t nnear = nearest_cones(w, &F[0], near_cone);
+            for (uint32_t ci = 0; ci < nnear; ++ci) {
+                const uint32_t c = near_cone[ci].c;
+                uint32_t nc = 0;
+                if (!cone_detours(w, G, valence, F, c, lo, hi, cand, &nc)) return 0;
+                pick_detour(w, G, turn, blocked, F, s, cand, nc, M->norm, best, best_norm, best_len,
+                            best_shift);
+            }
+        }
+    }
+    return 1;
+}
+
 sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const double *turn,
                              sq_cut_graph *G, sq_cut_steer_stats *stats, sq_error *err)
 {
@@ -698,7 +727,6 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     w.mark = calloc(m->nv, sizeof *w.mark);
     w.fstack = malloc((size_t)m->nf * sizeof *w.fstack);
     w.fmark = calloc(m->nf, sizeof *w.fmark);
-    route_cand cand[4];
     uint8_t *blocked = calloc(m->nh, 1);
     uint8_t *he_cut0 = malloc(m->nh), *straight0 = malloc(G->pattern.k + 1);
     if (he_cut0) memcpy(he_cut0, G->he_cut, m->nh);
@@ -724,9 +752,7 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
     S.norm_before = M.norm;
     S.wrong_loops_before = M.wrong_loops;
     for (uint32_t round = 0; M.norm > 0 && round < 6 * G->genus; ++round) {
-        /* every non-tree branch that must change, on both of its sides;
-         * per side the shortest detour that lowers the mismatch; over all
-         * sides the lowest mismatch, then the shortest detour */
+        /* the best detour of the round (best_detour) */
         uint32_t best_norm = M.norm, best_shift = 0;
         double best_len = INFINITY;
         sq_cut_graph best;
@@ -736,23 +762,9 @@ sq_status sq_cut_graph_steer(const sq_mesh *m, const int32_t *valence, const dou
         memcpy(w.cut, G->he_cut, m->nh);
         ws_recount(&w);
         F[1].live = F[2].live = 0;
-        for (uint32_t t = 0; t < M.nfree; ++t) {
-            if (!M.y[t]) continue;
-            const uint32_t i = M.pair_side[M.free_pair[t]];
-            const uint32_t sides[2] = {i, G->pattern.partner[i]};
-            for (int si = 0; si < 2; ++si) {
-                const uint32_t s = sides[si], lo = G->side_off[s], hi = G->side_off[s + 1];
-                if (!forest_start(&w, G, lo, hi, &F[0]) || !forest_grow(&w, &F[0], SQ_NONE)) goto nomem;
-                const uint32_t nnear = nearest_cones(&w, &F[0], near_cone);
-                for (uint32_t ci = 0; ci < nnear; ++ci) {
-                    const uint32_t c = near_cone[ci].c;
-                    uint32_t nc = 0;
-                    if (!cone_detours(&w, G, valence, F, c, lo, hi, cand, &nc)) goto nomem;
-                    pick_detour(&w, G, turn, blocked, F, s, cand, nc, M.norm, &best, &best_norm, &best_len,
-                                &best_shift);
-                }
-            }
-        }
+        if (!best_detour(&w, G, valence, turn, blocked, &M, F, near_cone, &best, &best_norm, &best_len,
+                         &best_shift))
+            goto nomem;
         if (best_norm >= M.norm) {
             sq_cut_graph_free(&best);
             /* no detour moves these branches: put them into the tree, so
