@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Benchmark of `seamquad optimize` (free translations) on seamless maps of
 # ../shared/data/mpz: the published map stored in each OBJ (its vt), and
-# with SQ_BENCH_PARAM=1 also `seamquad param`'s map of the same cones.
+# with SQ_BENCH_PARAM=1 also `seamquad param`'s map of the same cones,
+# through `optimize` (the whole map) and through `param --optimize on`
+# (rounds of the optimizer, each followed by param's simplification;
+# faces before -> after). SQ_BENCH_PARAM=rounds: the published map and
+# the rounds only.
 #
 #   bench/bench_optimize.sh [MODEL ...]     (default: the 16 mpz models)
 #
@@ -46,6 +50,18 @@ row() { # NAME KIND MESH CONES MAP
   fi
 }
 
+rounds_row() { # NAME MESH CONES: param --optimize on
+  local name=$1 mesh=$2 cones=$3 before after
+  if "$bin" param "$mesh" --cones "$cones" -o "$tmp/rounds.obj" --optimize on "${iters[@]}" --json \
+      >"$tmp/r.json" 2>"$tmp/err"; then
+    after=$(figures "$mesh" "$cones" "$tmp/rounds.obj")
+    read -r fb fa cb it why secs < <(python3 -c "import json; o = json.load(open('$tmp/r.json'))['optimize']; print(o['faces_before'], o['faces_after'], '%.3g' % o['conformal_before'], o['iterations'], o['stopped'].split(' (')[0].replace(' ', '_'), '%.2f' % o['seconds'])")
+    echo "| $name | param --optimize on | $fb -> $fa | $cb | | | ${after// / | } | $it | ${why//_/ } | $secs |"
+  else
+    echo "| $name | param --optimize on | error: $(tail -1 "$tmp/err" | cut -c1-80) | | | | | | | | | |"
+  fi
+}
+
 echo "| model | map | faces | conf. mean | conf. max | SD mean | opt. conf. mean | opt. conf. max | opt. SD mean | iterations | stopped | s |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for m in "${models[@]}"; do
@@ -58,5 +74,8 @@ for m in "${models[@]}"; do
     else
       echo "| $m | param | param failed: $(tail -1 "$tmp/err" | cut -c1-80) | | | | | | | | | |"
     fi
+  fi
+  if [ "${SQ_BENCH_PARAM:-0}" = 1 ] || [ "${SQ_BENCH_PARAM:-0}" = rounds ]; then
+    rounds_row "$m" "$mesh" "$cones"
   fi
 done

@@ -62,7 +62,7 @@ typedef struct sq_optimize_options {
     /* 1: the last iterate is returned (if it passes the exact check) even
      * when its energy against the surface is above the input's, as it may
      * be after a few iterations with progressive references; for callers
-     * that run the optimizer in rounds (sq_remesh_optimize). Default 0:
+     * that run the optimizer in rounds (sq_param_optimize). Default 0:
      * never worse. */
     int keep_last;
     /* NULL, or per face of the map a factor on its reference triangle:

@@ -32,7 +32,7 @@
 #include "sq_optimize.h"
 
 /* the iterations of a fixed round, and of the first free round after it
- * (remesh's rounds: sq_remesh_optimize.c) */
+ * (remesh's rounds: sq_param_optimize.c) */
 #define FIXED_ROUND 5u
 
 /* r's figures added to the rounds' report */

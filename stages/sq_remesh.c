@@ -765,7 +765,7 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
     begin(&pc, stats, "optimize", SHARE_OPTIMIZE);
     if (opt->keep_maps) {
         if (stats->map_from_rotations) st = sq_map_copy(&M, &out->map, err);
-        else if (!stats->from_map) st = sq_remesh_param_map(&P, m, out->valence, &out->map, err);
+        else if (!stats->from_map) st = sq_param_map(&P, m, out->valence, &out->map, err);
         if (st) goto fail;
     }
     sq_optimize_options oo;
@@ -775,7 +775,7 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
     oo.progress = optimize_progress;
     oo.user = &pc;
     if (stats->from_map || stats->map_from_rotations) {
-        sq_remesh_optimize_report *rep = &stats->optimize;
+        sq_param_optimize_report *rep = &stats->optimize;
         rep->conformal_before = sq_map_conformal_mean(&M);
         rep->faces_before = rep->faces_after = M.mesh.nf;
         oo.max_iterations = pc.iterations;
@@ -787,7 +787,7 @@ static sq_status remesh_once(const sq_mesh *m, const int32_t *valence, const sq_
         memcpy(rep->why, r.why, sizeof rep->why);
         rep->conformal_after = sq_map_conformal_mean(&M);
     } else {
-        st = sq_remesh_optimize(m, out->valence, &P, &oo, pc.iterations, &M, &stats->optimize, err);
+        st = sq_param_optimize(m, out->valence, &P, &oo, pc.iterations, &M, &stats->optimize, err);
     }
     sq_param_free(&P);
     stats->t_optimize = sq_now() - t1;

@@ -7,11 +7,11 @@
  *  2. param: the seamless map of the seed (sq_param_build): exact seams,
  *     every UV triangle positive, exactly the cones;
  *  3. map: that map as an exact sq_map of a refinement of the input
- *     (sq_remesh_param_map);
+ *     (sq_param_map);
  *  4. optimize: its distortion lowered with its rotations kept and its
  *     translations free (sq_optimize_map, progressive references), in
  *     rounds each followed by param's simplification, which removes far
- *     more added vertices from the optimized map (sq_remesh_optimize);
+ *     more added vertices from the optimized map (sq_param_optimize);
  *  5. quantize: the integer-grid map at the requested size, with its own
  *     optimization step (sq_quantize);
  *  6. extract: the quad mesh (sq_extract), folded quads relaxed on the
@@ -55,6 +55,7 @@
 #include "sq_mesh.h"
 #include "sq_optimize.h"
 #include "sq_param.h"
+#include "sq_param_optimize.h"
 #include "sq_quantize.h"
 #include "sq_smooth.h"
 
@@ -69,7 +70,7 @@ extern "C" {
  * cones (param's map at 1.3e88) converges after 414 and passes, refused
  * after 200; helmet and femur, refused either way, spend 10 s and 1 s
  * more at 600. */
-#define SQ_REMESH_ITERATIONS 600u
+#define SQ_REMESH_ITERATIONS SQ_PARAM_OPTIMIZE_ITERATIONS
 /* On maps of SQ_REMESH_STEP5_CAP_FACES faces or more, quantize's step 5
  * (the integer-grid map's distortion, sq_quantize.h) stops after
  * SQ_REMESH_STEP5_ITERATIONS Newton steps (quantize's own default: 20):
@@ -119,20 +120,6 @@ typedef struct sq_remesh_options {
     void *user;
 } sq_remesh_options;
 
-/* Stage 4's figures. */
-typedef struct sq_remesh_optimize_report {
-    uint32_t iterations;           /* optimizer iterations, all rounds       */
-    uint32_t reference_iterations; /* of them, with progressive references   */
-    uint32_t rounds;               /* simplifications run                    */
-    uint32_t fixed_rounds;         /* rounds run with the translations fixed */
-                                   /* (free ones failed the exact check)     */
-    uint32_t removed;              /* vertices they removed                  */
-    uint32_t faces_before, faces_after;
-    double conformal_before, conformal_after; /* area-weighted mean          */
-                                   /* sigma1/sigma2 (the referee's figure)   */
-    char why[160];                 /* why the last optimizer run stopped     */
-} sq_remesh_optimize_report;
-
 typedef struct sq_remesh_stats {
     const char *stage;             /* the stage running, or that failed      */
     int cones_from_field;          /* 1: stage 1 computed the cones          */
@@ -142,7 +129,7 @@ typedef struct sq_remesh_stats {
     sq_rotation_map_report rotations; /* stage 2's map on the mesh itself   */
     int map_from_rotations;        /* 1: it was valid and used (no param)    */
     sq_param_stats param;
-    sq_remesh_optimize_report optimize;
+    sq_param_optimize_report optimize;
     sq_quantize_stats quantize;
     sq_extract_stats extract;
     sq_untangle_stats untangle;

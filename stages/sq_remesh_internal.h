@@ -5,20 +5,6 @@
 
 #include "sq_remesh.h"
 
-/* Stage 3: param's result as an exact map of a refinement of m (its first
- * vertices are m's), checked by sq_map_check. */
-sq_status sq_remesh_param_map(const sq_param *P, const sq_mesh *m, const int32_t *valence,
-                              sq_map *out, sq_error *err);
-
-/* Stage 4: P's map optimized (base: the optimizer's options; its
- * max_iterations is ignored) for at most `budget` iterations in all, in
- * rounds each followed by sq_param_simplify on P with the optimized UVs
- * (sq_remesh_optimize.c). P is simplified in place; *M gets the final map
- * (exact, sq_map_check passes). */
-sq_status sq_remesh_optimize(const sq_mesh *m, const int32_t *valence, sq_param *P,
-                             const sq_optimize_options *base, uint32_t budget, sq_map *M,
-                             sq_remesh_optimize_report *rep, sq_error *err);
-
 /* The quads' intersecting triangle pairs (CGAL), each quad split along its
  * shorter diagonal as the referee splits it: the count in *pairs and the
  * first min(cap, *pairs) pairs as quad indices in list (may be NULL)

@@ -109,7 +109,7 @@ static void test_param_has_field_rotations(void **state)
         sq_param_stats ps;
         if (sq_param_build(&m, val, &po, &P, &ps, &err)) fail_msg("%s: param: %s", models[i], err.msg);
         sq_map M;
-        if (sq_remesh_param_map(&P, &m, val, &M, &err)) fail_msg("%s: map: %s", models[i], err.msg);
+        if (sq_param_map(&P, &m, val, &M, &err)) fail_msg("%s: map: %s", models[i], err.msg);
         const uint32_t bad = map_vs_field(&M, models[i]);
         print_message("%-10s param: mismatch %u -> %u (%u reroutes); map vs field: %u edges\n", models[i],
                       ps.rot_mismatch_before, ps.rot_mismatch_after, ps.rot_reroutes, bad);

@@ -1,4 +1,5 @@
-/* seamquad: param's result as an exact sq_map (sq_remesh.h, stage 3).
+/* seamquad: param's result as an exact sq_map (sq_param_optimize.h; stage
+ * 3 of remesh).
  *
  * The soup is param's own arrays (sq_param_soup: positions, triangles, UV
  * corners), read without copying; sq_map_from_soup with SQ_MAP_REQUIRE_EXACT checks that
@@ -8,14 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sq_remesh.h"
-#include "sq_remesh_internal.h"
+#include "sq_param_optimize.h"
 
-sq_status sq_remesh_param_map(const sq_param *P, const sq_mesh *m, const int32_t *valence,
+sq_status sq_param_map(const sq_param *P, const sq_mesh *m, const int32_t *valence,
                               sq_map *out, sq_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!P || !m || !P->nf) return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_remesh_param_map: no map");
+    if (!P || !m || !P->nf) return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_param_map: no map");
     sq_soup s;
     sq_status st = sq_param_soup(P, &s, err);
     if (st) return st;
