@@ -11,8 +11,8 @@
 
 #include "sq_param_optimize.h"
 
-sq_status sq_param_map(const sq_param *P, const sq_mesh *m, const int32_t *valence,
-                              sq_map *out, sq_error *err)
+sq_status sq_param_map(const sq_param *P, const sq_mesh *m, const int32_t *valence, sq_map *out,
+                       sq_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!P || !m || !P->nf) return sq_error_set(err, SQ_ERR_ARGUMENT, "sq_param_map: no map");

@@ -44,8 +44,8 @@ static void uv_to_param(const sq_map *M, sq_param *P)
 }
 
 sq_status sq_param_optimize(const sq_mesh *m, const int32_t *valence, sq_param *P,
-                             const sq_optimize_options *base, uint32_t budget, sq_map *M,
-                             sq_param_optimize_report *rep, sq_error *err)
+                            const sq_optimize_options *base, uint32_t budget, sq_map *M,
+                            sq_param_optimize_report *rep, sq_error *err)
 {
     memset(rep, 0, sizeof *rep);
     memset(M, 0, sizeof *M);

@@ -1,5 +1,5 @@
-/* seamquad: param's map, optimized and simplified (issue 24; `seamquad
- * param --optimize on`, stage 4 of `seamquad remesh`).
+/* seamquad: param's map, optimized and simplified (`seamquad param
+ * --optimize on`, stage 4 of `seamquad remesh`).
  *
  * param's maps are valid (exact seams, every triangle positive, exactly
  * the cones) but refined 3 to 39 times and far from conformal. These two
@@ -7,7 +7,7 @@
  * in rounds: a few optimizer iterations (rotations kept, translations
  * free), then param's own simplification on the optimized UVs, which can
  * remove far more of the added vertices once the map is less distorted
- * (docs/optimize.md, "From param's maps"). The seams' rotations and the
+ * (docs/param.md, step 10). The seams' rotations and the
  * cones never change; the translations do not stay integer (quantize
  * makes them integer again). */
 #ifndef SQ_PARAM_OPTIMIZE_H
