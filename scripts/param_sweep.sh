@@ -8,7 +8,8 @@
 # (../shared/tools/check_param.py MESH CONES OUT.obj --integer). With
 # --optimize each map is param's optimized and simplified in rounds
 # (`param --optimize on`; the referee without --integer: the translations
-# are real), its mean conformal ratio before -> after. With --quads N each map then goes through `seamquad quantize --quads N` and
+# are real), its mean conformal ratio before -> after. With --quads N each
+# map then goes through `seamquad quantize --quads N` and
 # `seamquad extract`, and the quad mesh is judged by the referee too
 # (../shared/tools/check_quad.py MESH QUADS --cones CONES). Prints a
 # markdown table and a summary; exit 0 only if every run passes.
@@ -38,7 +39,7 @@ while [ $# -gt 0 ]; do
     --quads) quads=$2; shift 2 ;;
     --optimize) optimize=on; shift ;;
     --keep) keep=$2; shift 2 ;;
-    -h|--help) sed -n '2,26p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
     *) echo "param_sweep: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
