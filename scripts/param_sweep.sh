@@ -39,7 +39,7 @@ while [ $# -gt 0 ]; do
     --quads) quads=$2; shift 2 ;;
     --optimize) optimize=on; shift ;;
     --keep) keep=$2; shift 2 ;;
-    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
     *) echo "param_sweep: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
