@@ -70,6 +70,86 @@ static void build_mesh(uint32_t n, uint32_t first, double cx, double cy, double 
     }
 }
 
+/* The same overlay from two threads (bit for bit), a cancelled build,
+ * and the crossing budgets and the sample's expectation around X's. */
+static void check_threads_and_budgets(uint32_t n, uint32_t na, uint32_t nv, const double *xy, const sq_overlay_mesh *pA,
+                                      const sq_overlay_mesh *pB, const sq_overlay *pX)
+{
+    const sq_overlay_mesh A = *pA, B = *pB;
+    const sq_overlay X = *pX;
+    sq_error err;
+    sq_error_clear(&err);
+    sq_overlay Y;
+    assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, NULL, &Y, &err), SQ_OK);
+    assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
+    assert_memory_equal(Y.x_ha, X.x_ha, X.nx * sizeof *X.x_ha);
+    assert_memory_equal(Y.x_hb, X.x_hb, X.nx * sizeof *X.x_hb);
+    assert_memory_equal(Y.x_ta, X.x_ta, X.nx * sizeof *X.x_ta);
+    assert_memory_equal(Y.x_tb, X.x_tb, X.nx * sizeof *X.x_tb);
+    assert_memory_equal(Y.loc, X.loc, nv * sizeof *X.loc);
+    assert_memory_equal(Y.bary, X.bary, 3 * (size_t)nv * sizeof *X.bary);
+    assert_memory_equal(Y.tri, X.tri, 3 * (size_t)X.ntri * sizeof *X.tri);
+    assert_memory_equal(Y.tri_fa, X.tri_fa, X.ntri * sizeof *X.tri_fa);
+    assert_memory_equal(Y.tri_fb, X.tri_fb, X.ntri * sizeof *X.tri_fb);
+    sq_overlay_free(&Y);
+    /* cancelled (as by another attempt that passed): no overlay */
+    _Atomic int cancel = 1;
+    assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, &cancel, &Y, &err), SQ_ERR_SOLVER);
+    assert_non_null(strstr(err.msg, "cancelled"));
+    assert_null(Y.tri);
+    atomic_store(&cancel, 0);
+    assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 1, &cancel, &Y, &err), SQ_OK);
+    assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
+    sq_overlay_free(&Y);
+    /* a budget: at the crossings (or a quarter below the expectation,
+     * which the budget alone is checked against), the same overlay;
+     * below them it stops; with room for the crossings but not the
+     * expectation, it stops at the sample */
+    const uint64_t room = X.nx > X.expected ? X.nx : X.expected;
+    assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, room, UINT64_MAX, 2, NULL, &Y, &err), SQ_OK);
+    assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
+    sq_overlay_free(&Y);
+    if (X.nx >= 3) { /* one range has more than a third */
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, X.nx / 3, 0, 1, NULL, &Y, &err),
+                         SQ_ERR_SOLVER);
+        assert_non_null(strstr(err.msg, "crossings"));
+        assert_null(Y.tri);
+    }
+    if (X.expected > 5 * (uint64_t)X.nx / 4 + 8) { /* room for the crossings, not the expectation */
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, X.nx + 1, UINT64_MAX, 2, NULL, &Y, &err),
+                         SQ_ERR_SOLVER);
+        assert_non_null(strstr(err.msg, "expected"));
+        assert_null(Y.tri);
+    }
+    /* the sample's expectation: the same with one thread and two; above
+     * max_expected, no walk (and no overlay), at it, the same overlay */
+    assert_true(X.expected == 0 || B.nf >= 32);
+    if (X.expected) {
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, X.expected, 2, NULL, &Y, &err),
+                         SQ_OK);
+        assert_true(Y.nx == X.nx && Y.ntri == X.ntri && Y.expected == X.expected);
+        assert_memory_equal(Y.tri, X.tri, 3 * (size_t)X.ntri * sizeof *X.tri);
+        sq_overlay_free(&Y);
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, X.expected - 1, 1, NULL, &Y,
+                                                  &err),
+                         SQ_ERR_SOLVER);
+        assert_non_null(strstr(err.msg, "expected"));
+        assert_null(Y.tri);
+        assert_true(Y.expected == X.expected);
+    }
+    /* a budget below the sample's own crossings: the sample stops at
+     * it (its memory bounded by the budget) and the call fails at once,
+     * as the whole walk, which makes every crossing the sample makes,
+     * would */
+    if (X.expected >= 16) {
+        const uint64_t sample = X.expected / 8;
+        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, sample - 1, 0, 2, NULL, &Y, &err),
+                         SQ_ERR_SOLVER);
+        assert_non_null(strstr(err.msg, "alone made"));
+        assert_null(Y.tri);
+    }
+}
+
 /* Returns the number of crossings (0 also when skipped as degenerate). */
 static uint32_t check_pair(uint32_t n)
 {
@@ -99,77 +179,7 @@ static uint32_t check_pair(uint32_t n)
     if (st) fprintf(stderr, "overlay n=%u: %s\n", n, err.msg);
     assert_int_equal(st, SQ_OK);
     /* B's faces in two ranges in two threads: the same overlay, bit for bit */
-    {
-        sq_overlay Y;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, NULL, &Y, &err), SQ_OK);
-        assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
-        assert_memory_equal(Y.x_ha, X.x_ha, X.nx * sizeof *X.x_ha);
-        assert_memory_equal(Y.x_hb, X.x_hb, X.nx * sizeof *X.x_hb);
-        assert_memory_equal(Y.x_ta, X.x_ta, X.nx * sizeof *X.x_ta);
-        assert_memory_equal(Y.x_tb, X.x_tb, X.nx * sizeof *X.x_tb);
-        assert_memory_equal(Y.loc, X.loc, nv * sizeof *X.loc);
-        assert_memory_equal(Y.bary, X.bary, 3 * (size_t)nv * sizeof *X.bary);
-        assert_memory_equal(Y.tri, X.tri, 3 * (size_t)X.ntri * sizeof *X.tri);
-        assert_memory_equal(Y.tri_fa, X.tri_fa, X.ntri * sizeof *X.tri_fa);
-        assert_memory_equal(Y.tri_fb, X.tri_fb, X.ntri * sizeof *X.tri_fb);
-        sq_overlay_free(&Y);
-        /* cancelled (as by another attempt that passed): no overlay */
-        _Atomic int cancel = 1;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 2, &cancel, &Y, &err), SQ_ERR_SOLVER);
-        assert_non_null(strstr(err.msg, "cancelled"));
-        assert_null(Y.tri);
-        atomic_store(&cancel, 0);
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, 0, 1, &cancel, &Y, &err), SQ_OK);
-        assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
-        sq_overlay_free(&Y);
-        /* a budget: at the crossings (or a quarter below the expectation,
-         * which the budget alone is checked against), the same overlay;
-         * below them it stops; with room for the crossings but not the
-         * expectation, it stops at the sample */
-        const uint64_t room = X.nx > X.expected ? X.nx : X.expected;
-        assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, room, UINT64_MAX, 2, NULL, &Y, &err), SQ_OK);
-        assert_true(Y.nx == X.nx && Y.ntri == X.ntri);
-        sq_overlay_free(&Y);
-        if (X.nx >= 3) { /* one range has more than a third */
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, X.nx / 3, 0, 1, NULL, &Y, &err),
-                             SQ_ERR_SOLVER);
-            assert_non_null(strstr(err.msg, "crossings"));
-            assert_null(Y.tri);
-        }
-        if (X.expected > 5 * (uint64_t)X.nx / 4 + 8) { /* room for the crossings, not the expectation */
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, X.nx + 1, UINT64_MAX, 2, NULL, &Y, &err),
-                             SQ_ERR_SOLVER);
-            assert_non_null(strstr(err.msg, "expected"));
-            assert_null(Y.tri);
-        }
-        /* the sample's expectation: the same with one thread and two; above
-         * max_expected, no walk (and no overlay), at it, the same overlay */
-        assert_true(X.expected == 0 || B.nf >= 32);
-        if (X.expected) {
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, X.expected, 2, NULL, &Y, &err),
-                             SQ_OK);
-            assert_true(Y.nx == X.nx && Y.ntri == X.ntri && Y.expected == X.expected);
-            assert_memory_equal(Y.tri, X.tri, 3 * (size_t)X.ntri * sizeof *X.tri);
-            sq_overlay_free(&Y);
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, 0, X.expected - 1, 1, NULL, &Y,
-                                                      &err),
-                             SQ_ERR_SOLVER);
-            assert_non_null(strstr(err.msg, "expected"));
-            assert_null(Y.tri);
-            assert_true(Y.expected == X.expected);
-        }
-        /* a budget below the sample's own crossings: the sample stops at
-         * it (its memory bounded by the budget) and the call fails at once,
-         * as the whole walk, which makes every crossing the sample makes,
-         * would */
-        if (X.expected >= 16) {
-            const uint64_t sample = X.expected / 8;
-            assert_int_equal(sq_overlay_build_threads(n, na, nv, xy, &A, &B, sample - 1, 0, 2, NULL, &Y, &err),
-                             SQ_ERR_SOLVER);
-            assert_non_null(strstr(err.msg, "alone made"));
-            assert_null(Y.tri);
-        }
-    }
+    check_threads_and_budgets(n, na, nv, xy, &A, &B, &X);
     /* the points: vertices, then crossings by their A parameter */
     double *p = malloc(2 * ((size_t)nv + X.nx) * sizeof *p);
     assert_non_null(p);
