@@ -24,6 +24,52 @@
 
 /* ---- 1. random splits ----------------------------------------------------- */
 
+/* forig: every face of S lies in the input face of m it names, oriented
+ * like it, and the faces of each input face add up to its area. */
+static void check_forig(const sq_mesh *pm, const sq_tsurf *pS)
+{
+    const sq_mesh m = *pm;
+    const sq_tsurf S = *pS;
+    double *farea = calloc(m.nf, sizeof *farea);
+    assert_non_null(farea);
+    for (uint32_t f = 0; f < S.nf; f++) {
+        uint32_t F = S.forig[f], e = m.f_he[F];
+        assert_true(F < m.nf);
+        const double *q[3];
+        for (int i = 0; i < 3; i++, e = m.he_next[e]) q[i] = m.pos + 3 * (size_t)m.he_vert[e];
+        double n[3], u[3] = {q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]},
+                     w[3] = {q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]};
+        n[0] = u[1] * w[2] - u[2] * w[1], n[1] = u[2] * w[0] - u[0] * w[2], n[2] = u[0] * w[1] - u[1] * w[0];
+        double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        uint32_t h = S.f_he[f];
+        const double *p[3];
+        for (int i = 0; i < 3; i++, h = S.next[h]) p[i] = S.pos + 3 * (size_t)S.vert[h];
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++) {
+                /* on the inner side of input edge k (relative to its area) */
+                const double *a = q[k], *b = q[(k + 1) % 3];
+                double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ap[3] = {p[i][0] - a[0], p[i][1] - a[1], p[i][2] - a[2]};
+                double cx = ab[1] * ap[2] - ab[2] * ap[1], cy = ab[2] * ap[0] - ab[0] * ap[2], cz = ab[0] * ap[1] - ab[1] * ap[0];
+                assert_true((cx * n[0] + cy * n[1] + cz * n[2]) / nn >= -1e-9 * nn);
+            }
+        double g1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]},
+               g2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+        double t[3] = {g1[1] * g2[2] - g1[2] * g2[1], g1[2] * g2[0] - g1[0] * g2[2], g1[0] * g2[1] - g1[1] * g2[0]};
+        assert_true(t[0] * n[0] + t[1] * n[1] + t[2] * n[2] > 0);
+        farea[F] += 0.5 * sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    }
+    for (uint32_t F = 0; F < m.nf; F++) {
+        uint32_t e = m.f_he[F];
+        const double *q0 = m.pos + 3 * (size_t)m.he_vert[e], *q1 = m.pos + 3 * (size_t)m.he_vert[m.he_next[e]],
+                     *q2 = m.pos + 3 * (size_t)m.he_vert[m.he_next[m.he_next[e]]];
+        double u[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]}, w[3] = {q2[0] - q0[0], q2[1] - q0[1], q2[2] - q0[2]};
+        double cx = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2], cz = u[0] * w[1] - u[1] * w[0];
+        double a = 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+        assert_true(fabs(farea[F] - a) <= 1e-9 * a);
+    }
+    free(farea);
+}
+
 static void split_run(const char *rel, uint32_t nsplit)
 {
     sq_mesh m;
@@ -145,46 +191,7 @@ static void split_run(const char *rel, uint32_t nsplit)
         assert_int_equal(s0.vert[Lt], s0.head[L]);
         assert_int_equal(s0.head[Lt], s0.vert[L]);
     }
-    /* forig: every face lies in the input face it names, oriented like it,
-     * and the faces of each input face add up to its area */
-    double *farea = calloc(m.nf, sizeof *farea);
-    assert_non_null(farea);
-    for (uint32_t f = 0; f < S.nf; f++) {
-        uint32_t F = S.forig[f], e = m.f_he[F];
-        assert_true(F < m.nf);
-        const double *q[3];
-        for (int i = 0; i < 3; i++, e = m.he_next[e]) q[i] = m.pos + 3 * (size_t)m.he_vert[e];
-        double n[3], u[3] = {q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]},
-                     w[3] = {q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]};
-        n[0] = u[1] * w[2] - u[2] * w[1], n[1] = u[2] * w[0] - u[0] * w[2], n[2] = u[0] * w[1] - u[1] * w[0];
-        double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        uint32_t h = S.f_he[f];
-        const double *p[3];
-        for (int i = 0; i < 3; i++, h = S.next[h]) p[i] = S.pos + 3 * (size_t)S.vert[h];
-        for (int i = 0; i < 3; i++)
-            for (int k = 0; k < 3; k++) {
-                /* on the inner side of input edge k (relative to its area) */
-                const double *a = q[k], *b = q[(k + 1) % 3];
-                double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ap[3] = {p[i][0] - a[0], p[i][1] - a[1], p[i][2] - a[2]};
-                double cx = ab[1] * ap[2] - ab[2] * ap[1], cy = ab[2] * ap[0] - ab[0] * ap[2], cz = ab[0] * ap[1] - ab[1] * ap[0];
-                assert_true((cx * n[0] + cy * n[1] + cz * n[2]) / nn >= -1e-9 * nn);
-            }
-        double g1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]},
-               g2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-        double t[3] = {g1[1] * g2[2] - g1[2] * g2[1], g1[2] * g2[0] - g1[0] * g2[2], g1[0] * g2[1] - g1[1] * g2[0]};
-        assert_true(t[0] * n[0] + t[1] * n[1] + t[2] * n[2] > 0);
-        farea[F] += 0.5 * sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    }
-    for (uint32_t F = 0; F < m.nf; F++) {
-        uint32_t e = m.f_he[F];
-        const double *q0 = m.pos + 3 * (size_t)m.he_vert[e], *q1 = m.pos + 3 * (size_t)m.he_vert[m.he_next[e]],
-                     *q2 = m.pos + 3 * (size_t)m.he_vert[m.he_next[m.he_next[e]]];
-        double u[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]}, w[3] = {q2[0] - q0[0], q2[1] - q0[1], q2[2] - q0[2]};
-        double cx = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2], cz = u[0] * w[1] - u[1] * w[0];
-        double a = 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
-        assert_true(fabs(farea[F] - a) <= 1e-9 * a);
-    }
-    free(farea);
+    check_forig(&m, &S);
     snap_free(&s0);
     free(okind), free(olen), free(clen), free(he_map);
     sq_tsurf_free(&S);
