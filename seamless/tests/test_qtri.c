@@ -119,6 +119,106 @@ static double worst_quality(const sq_omega *O)
     return worst;
 }
 
+/* T's flat vectors: every face closes exactly, dyadic, twins of equal
+ * length; Omega laid out exactly, every cut edge a turn by k x 90 degrees
+ * and an integer translation, the same along every label between nodes.
+ * Returns the cut halfedges. */
+static uint32_t check_layout(const char *name, uint64_t seed, sq_qtri *T, uint32_t n)
+{
+    const sq_tsurf *S = &T->S;
+    sq_error err = {0};
+    /* every face's flat vectors close, exactly, and are dyadic */
+    for (uint32_t f = 0; f < S->nf; f++) {
+        uint32_t h = S->f_he[f];
+        double sx = 0, sy = 0;
+        for (int i = 0; i < 3; i++, h = S->next[h]) {
+            double x = S->hvec[2 * h], y = S->hvec[2 * h + 1];
+            assert_true(ldexp(x, 60) == nearbyint(ldexp(x, 60)));
+            assert_true(ldexp(y, 60) == nearbyint(ldexp(y, 60)));
+            sx += x, sy += y;
+            /* twins are the same segment: equal lengths */
+            double tx = S->hvec[2 * S->twin[h]], ty = S->hvec[2 * S->twin[h] + 1];
+            assert_true(x * x + y * y == tx * tx + ty * ty);
+        }
+        assert_true(sx == 0 && sy == 0);
+    }
+    /* Omega: the cut disk laid out exactly; across every cut edge a
+     * turn by a multiple of 90 degrees and an integer translation, the
+     * same along every tree segment and every side (but the root's) */
+    double *cxy = malloc(2 * S->nh * sizeof *cxy);
+    if (sq_qtri_layout(T, cxy, &err)) fail_msg("%s seed %llu: %s", name, (unsigned long long)seed, err.msg);
+    uint32_t ncut = 0, changes = 0;
+    for (uint32_t h = 0; h < S->nh; h++) {
+        if (!S->kind[h]) continue;
+        uint8_t rot, rot2;
+        double t[2], t2[2];
+        assert_true(sq_qtri_transition(T, cxy, h, &rot, t));
+        assert_true(t[0] == nearbyint(t[0]) && t[1] == nearbyint(t[1]));
+        ncut++;
+        /* the next cut edge along the same label, where the vertex
+         * between is no node */
+        uint32_t b = sq_ts_head(S, h), g = sq_tsurf_next_boundary(S, h);
+        if (S->label[g] != S->label[h]) continue;
+        int node = S->valence[b] != 4 || b == T->root;
+        for (uint32_t j = 1; j < n; j++) node |= T->att[j] == b;
+        if (node) continue;
+        assert_true(sq_qtri_transition(T, cxy, g, &rot2, t2));
+        if (rot2 != rot || t2[0] != t[0] || t2[1] != t[1]) changes++;
+    }
+    /* (the root, where its side's transition changes, is a node, and
+     * a side's two ends are corners, where the label changes) */
+    assert_int_equal(changes, 0);
+    free(cxy);
+    return ncut;
+}
+
+/* Omega as an sq_omega, then coarsened (sq_omega_coarsen). */
+static void check_omega(const char *name, uint64_t seed, sq_qtri *T, sq_domain *D, uint32_t k, uint32_t n,
+                        uint32_t ncut)
+{
+    const sq_tsurf *S = &T->S;
+    sq_error err = {0};
+    /* Omega as an sq_omega: a disk of T's faces, every label one
+     * transition, the root splitting its side */
+    sq_omega O;
+    sq_omega_init(&O);
+    uint32_t nseg = 0, *sf = NULL, *stt = NULL;
+    if (sq_qtri_omega(T, D, &O, &nseg, &sf, &stt, &err))
+        fail_msg("%s seed %llu: %s", name, (unsigned long long)seed, err.msg);
+    assert_int_equal(O.cut.nf, S->nf);
+    assert_int_equal(O.cut.nbnd, ncut);
+    assert_int_equal(O.nlabels, k + 2 * nseg + 2);
+    assert_true(nseg >= n - 1);
+    for (uint32_t s2 = 0; s2 < nseg; s2++) assert_true(sf[s2] != stt[s2]);
+    free(sf), free(stt);
+    /* coarser: fewer inner vertices, the same boundary and labels,
+     * every triangle positive (exact) */
+    const uint32_t nb0 = O.cut.nbnd, nf0 = O.cut.nf;
+    uint32_t *lab0 = malloc(nb0 * sizeof *lab0);
+    for (uint32_t i = 0, b = O.cut.bnd_he; i < nb0; i++, b = O.cut.he_next[b]) lab0[i] = O.he_label[b];
+    uint32_t removed = 0;
+    const double q0 = worst_quality(&O);
+    assert_int_equal(sq_omega_coarsen(&O, &removed, &err), SQ_OK);
+    /* no sliver made: the worst shape is no worse than before */
+    assert_true(worst_quality(&O) >= q0);
+    assert_int_equal(sq_metapolygon_validate(&O.cut, 0, &err), SQ_OK);
+    assert_int_equal(O.cut.nbnd, nb0);
+    assert_true(O.cut.nf < nf0 && removed > 0);
+    for (uint32_t i = 0, b = O.cut.bnd_he; i < nb0; i++, b = O.cut.he_next[b]) {
+        assert_int_equal(O.he_label[b], lab0[i]);
+        assert_int_equal(O.he_partner[O.he_partner[b]], b);
+    }
+    for (uint32_t f = 0; f < O.cut.nf; f++) {
+        uint32_t h = O.cut.f_he[f];
+        double q[3][2];
+        for (int i = 0; i < 3; i++, h = O.cut.he_next[h])
+            q[i][0] = (double)O.xy[2 * O.cut.he_vert[h]], q[i][1] = (double)O.xy[2 * O.cut.he_vert[h] + 1];
+        assert_true(sq_orient2d(q[0], q[1], q[2]) > 0);
+    }
+    free(lab0);
+    sq_omega_free(&O);
+}
+
 static void run_model(const char *name, uint64_t seed)
 {
     char path[256];
@@ -253,87 +353,8 @@ static void run_model(const char *name, uint64_t seed)
         assert_int_equal(T.tree_step[T.root], n);
         assert_true(T.root_side < k && T.root_side == qside);
         assert_int_equal(S->label[T.root_he], T.root_side);
-        /* every face's flat vectors close, exactly, and are dyadic */
-        for (uint32_t f = 0; f < S->nf; f++) {
-            uint32_t h = S->f_he[f];
-            double sx = 0, sy = 0;
-            for (int i = 0; i < 3; i++, h = S->next[h]) {
-                double x = S->hvec[2 * h], y = S->hvec[2 * h + 1];
-                assert_true(ldexp(x, 60) == nearbyint(ldexp(x, 60)));
-                assert_true(ldexp(y, 60) == nearbyint(ldexp(y, 60)));
-                sx += x, sy += y;
-                /* twins are the same segment: equal lengths */
-                double tx = S->hvec[2 * S->twin[h]], ty = S->hvec[2 * S->twin[h] + 1];
-                assert_true(x * x + y * y == tx * tx + ty * ty);
-            }
-            assert_true(sx == 0 && sy == 0);
-        }
-        /* Omega: the cut disk laid out exactly; across every cut edge a
-         * turn by a multiple of 90 degrees and an integer translation, the
-         * same along every tree segment and every side (but the root's) */
-        double *cxy = malloc(2 * S->nh * sizeof *cxy);
-        if (sq_qtri_layout(&T, cxy, &err)) fail_msg("%s seed %llu: %s", name, (unsigned long long)seed, err.msg);
-        uint32_t ncut = 0, changes = 0;
-        for (uint32_t h = 0; h < S->nh; h++) {
-            if (!S->kind[h]) continue;
-            uint8_t rot, rot2;
-            double t[2], t2[2];
-            assert_true(sq_qtri_transition(&T, cxy, h, &rot, t));
-            assert_true(t[0] == nearbyint(t[0]) && t[1] == nearbyint(t[1]));
-            ncut++;
-            /* the next cut edge along the same label, where the vertex
-             * between is no node */
-            uint32_t b = sq_ts_head(S, h), g = sq_tsurf_next_boundary(S, h);
-            if (S->label[g] != S->label[h]) continue;
-            int node = S->valence[b] != 4 || b == T.root;
-            for (uint32_t j = 1; j < n; j++) node |= T.att[j] == b;
-            if (node) continue;
-            assert_true(sq_qtri_transition(&T, cxy, g, &rot2, t2));
-            if (rot2 != rot || t2[0] != t[0] || t2[1] != t[1]) changes++;
-        }
-        /* (the root, where its side's transition changes, is a node, and
-         * a side's two ends are corners, where the label changes) */
-        assert_int_equal(changes, 0);
-        free(cxy);
-        /* Omega as an sq_omega: a disk of T's faces, every label one
-         * transition, the root splitting its side */
-        sq_omega O;
-        sq_omega_init(&O);
-        uint32_t nseg = 0, *sf = NULL, *stt = NULL;
-        if (sq_qtri_omega(&T, &D, &O, &nseg, &sf, &stt, &err))
-            fail_msg("%s seed %llu: %s", name, (unsigned long long)seed, err.msg);
-        assert_int_equal(O.cut.nf, S->nf);
-        assert_int_equal(O.cut.nbnd, ncut);
-        assert_int_equal(O.nlabels, k + 2 * nseg + 2);
-        assert_true(nseg >= n - 1);
-        for (uint32_t s2 = 0; s2 < nseg; s2++) assert_true(sf[s2] != stt[s2]);
-        free(sf), free(stt);
-        /* coarser: fewer inner vertices, the same boundary and labels,
-         * every triangle positive (exact) */
-        const uint32_t nb0 = O.cut.nbnd, nf0 = O.cut.nf;
-        uint32_t *lab0 = malloc(nb0 * sizeof *lab0);
-        for (uint32_t i = 0, b = O.cut.bnd_he; i < nb0; i++, b = O.cut.he_next[b]) lab0[i] = O.he_label[b];
-        uint32_t removed = 0;
-        const double q0 = worst_quality(&O);
-        assert_int_equal(sq_omega_coarsen(&O, &removed, &err), SQ_OK);
-        /* no sliver made: the worst shape is no worse than before */
-        assert_true(worst_quality(&O) >= q0);
-        assert_int_equal(sq_metapolygon_validate(&O.cut, 0, &err), SQ_OK);
-        assert_int_equal(O.cut.nbnd, nb0);
-        assert_true(O.cut.nf < nf0 && removed > 0);
-        for (uint32_t i = 0, b = O.cut.bnd_he; i < nb0; i++, b = O.cut.he_next[b]) {
-            assert_int_equal(O.he_label[b], lab0[i]);
-            assert_int_equal(O.he_partner[O.he_partner[b]], b);
-        }
-        for (uint32_t f = 0; f < O.cut.nf; f++) {
-            uint32_t h = O.cut.f_he[f];
-            double q[3][2];
-            for (int i = 0; i < 3; i++, h = O.cut.he_next[h])
-                q[i][0] = (double)O.xy[2 * O.cut.he_vert[h]], q[i][1] = (double)O.xy[2 * O.cut.he_vert[h] + 1];
-            assert_true(sq_orient2d(q[0], q[1], q[2]) > 0);
-        }
-        free(lab0);
-        sq_omega_free(&O);
+        const uint32_t ncut = check_layout(name, seed, &T, n);
+        check_omega(name, seed, &T, &D, k, n, ncut);
         print_message("%s seed %llu: %u cones, %u nodes, tree %u vertices, Q triangulated %u -> %u vertices "
                       "(%llu Steiner), %u cut halfedges, Omega laid out\n",
                       name, (unsigned long long)seed, n, nodes, ntree, nv0, S->nv, (unsigned long long)T.splits, ncut);
