@@ -232,11 +232,11 @@ int sq_cmd_smooth(int argc, char **argv)
             print_quality_json("after", &stats.after, stats.dist_after_rel);
             printf("  \"untangle_iterations\": %d, \"iterations\": %d, \"solver_iterations\": %ld, "
                    "\"solver_rejected_steps\": %ld, \"fold_rejections\": %ld, \"backtracks\": %d, "
-                   "\"steps_rejected\": %d, \"pinned\": %u, \"thorough\": %s,\n  \"energy_before\": %.17g, \"energy_after\": %.17g, "
+                   "\"steps_rejected\": %d, \"pinned\": %u, \"cautious\": %s, \"thorough\": %s,\n  \"energy_before\": %.17g, \"energy_after\": %.17g, "
                    "\"linear_solver\": \"%s\", \"stop_reason\": ",
                    stats.untangle_iterations, stats.iterations, stats.solver_iterations, stats.solver_rejected,
                    stats.fold_rejections, stats.backtracks, stats.steps_rejected, stats.pinned,
-                   stats.thorough ? "true" : "false", stats.energy_before,
+                   stats.cautious ? "true" : "false", stats.thorough ? "true" : "false", stats.energy_before,
                    stats.energy_after, stats.linear_solver);
             sq_json_string(stdout, stats.stop_reason);
             printf(",\n  \"smooth_s\": %.3f,\n", stats.seconds);
@@ -256,9 +256,10 @@ int sq_cmd_smooth(int argc, char **argv)
         printf("surface    max distance/diagonal: before %.3g, after %.3g\n", stats.dist_before_rel,
                stats.dist_after_rel);
         printf("solver     %d untangle + %d smoothing iterations, %ld Ceres iterations (%s), %ld Ceres steps "
-               "rejected (%ld trial states would fold a quad), %d backtracks, %d steps rejected%s\n",
+               "rejected (%ld trial states would fold a quad), %d backtracks, %d steps rejected%s%s\n",
                stats.untangle_iterations, stats.iterations, stats.solver_iterations, stats.linear_solver,
                stats.solver_rejected, stats.fold_rejections, stats.backtracks, stats.steps_rejected,
+               stats.cautious ? " (a quick step failed or stalled: the later ones from a small trust region)" : "",
                stats.thorough ? " (quick steps failed or stalled: then solved as thoroughly as untangling)" : "");
         printf("stop       %s\n", stats.stop_reason);
         printf("energy     %.6g -> %.6g\ntime       %.2f s\n", stats.energy_before, stats.energy_after, total);

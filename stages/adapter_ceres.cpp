@@ -73,6 +73,7 @@ extern "C" void sq_nlls_options_default(sq_nlls_options *o)
     o->parameter_tolerance = 1e-8;
     o->num_threads = 1;
     o->max_linear_iterations = 500;
+    o->initial_trust_region_radius = 1e4;
 }
 
 extern "C" sq_status sq_nlls_solve(const sq_nlls_problem *p, const sq_nlls_options *o,
@@ -114,6 +115,11 @@ extern "C" sq_status sq_nlls_solve(const sq_nlls_problem *p, const sq_nlls_optio
         so.preconditioner_type = ceres::JACOBI;
         if (o->max_linear_iterations > 0) so.max_linear_solver_iterations = o->max_linear_iterations;
         so.max_num_iterations = o->max_iterations;
+        if (o->initial_trust_region_radius > 0) {
+            so.initial_trust_region_radius = o->initial_trust_region_radius;
+            if (so.max_trust_region_radius < so.initial_trust_region_radius)
+                so.max_trust_region_radius = so.initial_trust_region_radius;
+        }
         so.function_tolerance = o->function_tolerance;
         so.gradient_tolerance = o->gradient_tolerance;
         so.parameter_tolerance = o->parameter_tolerance;

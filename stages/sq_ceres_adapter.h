@@ -63,6 +63,8 @@ typedef struct sq_nlls_options {
     int num_threads;            /* >= 1; callbacks must be thread-safe if > 1 */
     int max_linear_iterations;  /* conjugate-gradient iterations per step  */
                                 /* (500: Ceres' default)                   */
+    double initial_trust_region_radius; /* LM's first trust region (1e4, as  */
+                                /* Ceres'; 1 / the first damping weight)   */
 } sq_nlls_options;
 
 typedef struct sq_nlls_summary {
@@ -74,7 +76,8 @@ typedef struct sq_nlls_summary {
     char message[256];          /* Ceres' termination message              */
 } sq_nlls_summary;
 
-/* Defaults: 50 iterations, tolerances 1e-8, 1e-10, 1e-8, 1 thread. */
+/* Defaults: 50 iterations, tolerances 1e-8, 1e-10, 1e-8, 1 thread,
+ * 500 linear iterations, trust region 1e4. */
 void sq_nlls_options_default(sq_nlls_options *o);
 
 /* Solves with Levenberg-Marquardt, each step's normal equations by

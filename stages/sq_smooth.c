@@ -9,7 +9,9 @@
  * only if no quad folds there and (smoothing) no referee measure gets
  * worse (quality_not_worse, after revert_worsened); otherwise the step is
  * halved, up to MAX_BACKTRACK times, then retried with damping, then
- * rejected. From the second half of the iterations on, quad vertices are
+ * rejected. A quick step that fails or stalls early makes every later
+ * solve start from a small trust region (docs/smooth.md, "Trust
+ * region"). From the second half of the iterations on, quad vertices are
  * first pinned on the surface's sharp points where the quads would cut
  * them off (pin_far_surface_vertices, sq_smooth_pin.c) and held there. */
 #include <stdio.h>
@@ -49,6 +51,8 @@ void sq_smooth_options_default(sq_smooth_options *o)
     o->thorough_stop_tolerance = 1e-3;
     o->gradient_tolerance = 1e-10;
     o->parameter_tolerance = 1e-8;
+    o->trust_region_radius = 1e4;
+    o->cautious_trust_region_radius = 1.0;
     o->num_threads = 1;
 }
 
@@ -80,6 +84,7 @@ typedef struct smoother {
     double *unit_vnormal;       /* 3*snv: vnormal normalized (quad_turned)     */
     unsigned char *dirty;       /* nq: to be judged again (revert_pass)        */
     sq_smooth_ctx ctx;
+    double radius;              /* Levenberg-Marquardt's first trust region  */
 } smoother;
 
 static void set_frames(smoother *s)
@@ -378,6 +383,7 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
     no.gradient_tolerance = o->gradient_tolerance;
     no.parameter_tolerance = o->parameter_tolerance;
     no.num_threads = o->num_threads;
+    no.initial_trust_region_radius = s->radius;
     sq_nlls_summary sum;
     sq_status st = sq_nlls_solve(&p, &no, &sum, err);
     free(con_off), free(con_param);
@@ -465,6 +471,7 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
     memset(&s, 0, sizeof s);
     double diag = 0.0;
     s.opt = opt, s.stats = stats, s.nv = nv, s.nq = nq, s.quads = quads, s.pos = pos;
+    s.radius = opt->trust_region_radius;
     sq_status st = sq_cp_tree_build(snv, spos, snt, stri, &s.tree, err);
     if (st != SQ_OK) return st;
     double *tri_normal = malloc(3 * (size_t)snt * sizeof(double));
@@ -612,6 +619,15 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
             st = err ? err->code : SQ_ERR_SOLVER;
             goto done;
         }
+        if (r != 1 && !stats->thorough && s.radius > opt->cautious_trust_region_radius) {
+            /* Levenberg-Marquardt's first steps overshot (its trust region
+             * shrank through rejected steps until the solve ended): the
+             * same step again, and every later one, from a small region */
+            s.radius = opt->cautious_trust_region_radius;
+            stats->cautious = 1;
+            it--;
+            continue;
+        }
         if (r != 1 && !stats->thorough && stats->iterations == 0) {
             /* the short, inexact solves found no acceptable first step
              * (slivers: ill-conditioned normal equations): solve as
@@ -656,6 +672,13 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         const double tol = stats->thorough ? opt->thorough_stop_tolerance : opt->stop_tolerance;
         int small = energy - e <= tol * energy;
         energy = e;
+        if (small && !stats->thorough && e > 0.5 * stats->energy_before &&
+            s.radius > opt->cautious_trust_region_radius) {
+            /* the quick steps stalled early: first from a small region */
+            s.radius = opt->cautious_trust_region_radius;
+            stats->cautious = 1;
+            continue;
+        }
         if (small && !stats->thorough && e > 0.5 * stats->energy_before) {
             /* the quick steps stalled before removing half the energy
              * (block's skewed quads): go on with thorough solves */

@@ -111,6 +111,12 @@ typedef struct sq_smooth_options {
                              /* the widest gap) gets a quad vertex held on it    */
                              /* (0.3; 0: no pins)                                */
     double function_tolerance, gradient_tolerance, parameter_tolerance; /* Ceres  */
+    double trust_region_radius; /* Levenberg-Marquardt's first trust region in  */
+                             /* each solve (1e4, as Ceres')                      */
+    double cautious_trust_region_radius; /* from the first quick step that fails */
+                             /* or stalls on: before going thorough (1: a first  */
+                             /* damping equal to the normal equations' diagonal; */
+                             /* docs/smooth.md, "Iteration bounds")              */
     double stop_tolerance;   /* stop when an outer iteration lowers the energy by */
                              /* less than this, relative (1e-4)                   */
     double thorough_stop_tolerance; /* the same for thorough iterations (1e-3):  */
@@ -136,6 +142,8 @@ typedef struct sq_smooth_stats {
     int steps_rejected;          /* outer steps rejected whole (fold / quality) */
     int retries;                 /* damped retries after a rejected step        */
     uint32_t pinned;             /* quad vertices held on surface vertices      */
+    int cautious;                /* 1: a quick step failed or stalled: the later */
+                                 /* ones from cautious_trust_region_radius      */
     int thorough;                /* 1: the quick steps failed at once or stalled */
                                  /* early; the later ones used untangling's      */
                                  /* bounds (docs/smooth.md)                      */
