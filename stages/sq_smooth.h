@@ -113,10 +113,10 @@ typedef struct sq_smooth_options {
     double function_tolerance, gradient_tolerance, parameter_tolerance; /* Ceres  */
     double trust_region_radius; /* Levenberg-Marquardt's first trust region in  */
                              /* each solve (1e4, as Ceres')                      */
-    double cautious_trust_region_radius; /* from the first quick step that fails */
-                             /* or stalls on: before going thorough (1: a first  */
-                             /* damping equal to the normal equations' diagonal; */
-                             /* docs/smooth.md, "Iteration bounds")              */
+    double cautious_trust_region_radius; /* instead, once a quick step failed */
+                             /* or stalled early, before going thorough (1: a    */
+                             /* first damping equal to the normal equations'     */
+                             /* diagonal; docs/smooth.md, "Trust region")        */
     double stop_tolerance;   /* stop when an outer iteration lowers the energy by */
                              /* less than this, relative (1e-4)                   */
     double thorough_stop_tolerance; /* the same for thorough iterations (1e-3):  */
