@@ -440,6 +440,16 @@ static int outer_step(smoother *s, int smoothing, sq_error *err)
     return 0;
 }
 
+/* Quick solves from the cautious trust region from here on; 0 where they
+ * already are, or the solves are thorough. */
+static int go_cautious(smoother *s)
+{
+    if (s->stats->thorough || s->radius <= s->opt->cautious_trust_region_radius) return 0;
+    s->radius = s->opt->cautious_trust_region_radius;
+    s->stats->cautious = 1;
+    return 1;
+}
+
 static double max_dist_rel(const sq_cp_tree *t, uint32_t nv, const double *pos, double diag)
 {
     double worst = 0.0;
@@ -619,12 +629,10 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
             st = err ? err->code : SQ_ERR_SOLVER;
             goto done;
         }
-        if (r != 1 && !stats->thorough && s.radius > opt->cautious_trust_region_radius) {
+        if (r != 1 && go_cautious(&s)) {
             /* Levenberg-Marquardt's first steps overshot (its trust region
              * shrank through rejected steps until the solve ended): the
              * same step again, and every later one, from a small region */
-            s.radius = opt->cautious_trust_region_radius;
-            stats->cautious = 1;
             it--;
             continue;
         }
@@ -672,13 +680,8 @@ sq_status sq_smooth_quads(uint32_t snv, const double *spos, uint32_t snt, const 
         const double tol = stats->thorough ? opt->thorough_stop_tolerance : opt->stop_tolerance;
         int small = energy - e <= tol * energy;
         energy = e;
-        if (small && !stats->thorough && e > 0.5 * stats->energy_before &&
-            s.radius > opt->cautious_trust_region_radius) {
-            /* the quick steps stalled early: first from a small region */
-            s.radius = opt->cautious_trust_region_radius;
-            stats->cautious = 1;
-            continue;
-        }
+        if (small && e > 0.5 * stats->energy_before && go_cautious(&s))
+            continue; /* the quick steps stalled early: first from a small region */
         if (small && !stats->thorough && e > 0.5 * stats->energy_before) {
             /* the quick steps stalled before removing half the energy
              * (block's skewed quads): go on with thorough solves */
